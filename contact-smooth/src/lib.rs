@@ -1,0 +1,1 @@
+//! Placeholder: this crate's issue comes later (see README.md).

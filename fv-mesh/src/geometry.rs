@@ -1,0 +1,142 @@
+//! Geometric quantities of the finite-volume discretisation (thesis §3.2.2).
+use crate::poly_mesh::polygon_centre_area;
+use crate::{MeshError, PolyMesh, Real, Vector};
+
+/// Cell and face geometry of a [`PolyMesh`] in its current configuration.
+///
+/// For internal faces `delta[f] = C_N − C_P`; for boundary faces
+/// `delta[f] = C_f − C_P`. `weight[f]` is the owner weight γ of the linear
+/// face interpolation (3.13), φ_f = γ φ_P + (1 − γ) φ_N.
+#[derive(Debug, Clone, Default)]
+pub struct MeshGeometry {
+    /// Cell centres (pyramid decomposition).
+    pub cell_centres: Vec<Vector>,
+    /// Cell volumes (pyramid decomposition).
+    pub cell_volumes: Vec<Real>,
+    /// Face centres (triangle fan about the point average).
+    pub face_centres: Vec<Vector>,
+    /// Face area vectors Γ_f, pointing out of the owner.
+    pub face_areas: Vec<Vector>,
+    /// |Γ_f|.
+    pub face_mag: Vec<Real>,
+    /// Unit normals n_f.
+    pub face_normals: Vec<Vector>,
+    /// d-vectors.
+    pub delta: Vec<Vector>,
+    /// Owner interpolation weight γ.
+    pub weight: Vec<Real>,
+}
+
+impl MeshGeometry {
+    /// Computes all geometry; fails on open cells or non-positive volumes.
+    pub fn new(mesh: &PolyMesh) -> Result<Self, MeshError> {
+        let mut g = MeshGeometry::default();
+        g.update(mesh)?;
+        Ok(g)
+    }
+
+    /// Recomputes the geometry in place (after the points moved).
+    pub fn update(&mut self, mesh: &PolyMesh) -> Result<(), MeshError> {
+        let nf = mesh.n_faces();
+        let nc = mesh.n_cells;
+        let ni = mesh.n_internal_faces();
+        self.face_centres.resize(nf, Vector::zeros());
+        self.face_areas.resize(nf, Vector::zeros());
+        self.face_mag.resize(nf, 0.0);
+        self.face_normals.resize(nf, Vector::zeros());
+        for f in 0..nf {
+            let (c, a) = polygon_centre_area(&mesh.points, mesh.face(f));
+            let m = a.norm();
+            if m <= 0.0 || !m.is_finite() {
+                return Err(MeshError::invalid(format!(
+                    "face {f} has zero area (degenerate face)"
+                )));
+            }
+            self.face_centres[f] = c;
+            self.face_areas[f] = a;
+            self.face_mag[f] = m;
+            self.face_normals[f] = a / m;
+        }
+        // cell centre estimate: average of face centres; closedness check
+        let mut est = vec![Vector::zeros(); nc];
+        let mut nfaces = vec![0u32; nc];
+        let mut closure = vec![Vector::zeros(); nc];
+        let mut area_sum = vec![0.0; nc];
+        for f in 0..nf {
+            let o = mesh.owner[f] as usize;
+            est[o] += self.face_centres[f];
+            nfaces[o] += 1;
+            closure[o] += self.face_areas[f];
+            area_sum[o] += self.face_mag[f];
+            if f < ni {
+                let n = mesh.neighbour[f] as usize;
+                est[n] += self.face_centres[f];
+                nfaces[n] += 1;
+                closure[n] -= self.face_areas[f];
+                area_sum[n] += self.face_mag[f];
+            }
+        }
+        for c in 0..nc {
+            if nfaces[c] < 4 {
+                return Err(MeshError::invalid(format!(
+                    "cell {c} has {} faces (at least 4 needed)",
+                    nfaces[c]
+                )));
+            }
+            if closure[c].norm() > 1e-6 * area_sum[c] {
+                return Err(MeshError::invalid(format!(
+                    "cell {c} is open: the sum of its face area vectors is {:.3e} of its total face area",
+                    closure[c].norm() / area_sum[c]
+                )));
+            }
+            est[c] /= nfaces[c] as f64;
+        }
+        // pyramid decomposition
+        let mut vol = vec![0.0; nc];
+        let mut ctr = vec![Vector::zeros(); nc];
+        for f in 0..nf {
+            let o = mesh.owner[f] as usize;
+            let pv = self.face_areas[f].dot(&(self.face_centres[f] - est[o])) / 3.0;
+            vol[o] += pv;
+            ctr[o] += pv * (0.75 * self.face_centres[f] + 0.25 * est[o]);
+            if f < ni {
+                let n = mesh.neighbour[f] as usize;
+                let pv = -self.face_areas[f].dot(&(self.face_centres[f] - est[n])) / 3.0;
+                vol[n] += pv;
+                ctr[n] += pv * (0.75 * self.face_centres[f] + 0.25 * est[n]);
+            }
+        }
+        for c in 0..nc {
+            if !(vol[c] > 0.0) {
+                return Err(MeshError::invalid(format!(
+                    "cell {c} has non-positive volume {:.3e} (inverted or degenerate cell)",
+                    vol[c]
+                )));
+            }
+            ctr[c] /= vol[c];
+        }
+        self.cell_centres = ctr;
+        self.cell_volumes = vol;
+        self.delta.resize(nf, Vector::zeros());
+        self.weight.resize(nf, 1.0);
+        for f in 0..nf {
+            let cp = self.cell_centres[mesh.owner[f] as usize];
+            if f < ni {
+                let cn = self.cell_centres[mesh.neighbour[f] as usize];
+                self.delta[f] = cn - cp;
+                let dp = (self.face_centres[f] - cp).norm();
+                let dn = (cn - self.face_centres[f]).norm();
+                self.weight[f] = dn / (dp + dn);
+            } else {
+                self.delta[f] = self.face_centres[f] - cp;
+                self.weight[f] = 1.0;
+            }
+        }
+        Ok(())
+    }
+
+    /// Total volume.
+    pub fn total_volume(&self) -> Real {
+        self.cell_volumes.iter().sum()
+    }
+}

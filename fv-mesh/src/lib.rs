@@ -1,0 +1,30 @@
+//! Polyhedral finite-volume meshes with OpenFOAM addressing.
+//!
+//! A [`PolyMesh`] stores points, faces (as point lists), the owner and
+//! neighbour cell of every face and the boundary patches, in the order
+//! OpenFOAM uses: internal faces first (sorted by owner, then neighbour),
+//! then the boundary faces grouped by patch. [`MeshGeometry`] holds the
+//! derived geometric quantities of thesis §3.2 (cell centres and volumes,
+//! face centres and area vectors, d-vectors, interpolation weights).
+#![warn(missing_docs)]
+
+mod cell_shapes;
+mod error;
+mod geometry;
+mod poly_mesh;
+mod quality;
+
+pub mod generators;
+
+pub use cell_shapes::{CellShape, CellType};
+pub use error::MeshError;
+pub use geometry::MeshGeometry;
+pub use poly_mesh::{CellZone, Patch, PolyMesh};
+pub use quality::MeshQuality;
+
+/// Scalar type used everywhere.
+pub type Real = f64;
+/// 3-vector (positions, displacements, area vectors).
+pub type Vector = nalgebra::Vector3<Real>;
+/// 3×3 tensor (gradients, stresses).
+pub type Tensor = nalgebra::Matrix3<Real>;

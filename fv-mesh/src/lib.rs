@@ -9,18 +9,26 @@
 #![warn(missing_docs)]
 
 mod cell_shapes;
+mod cell_to_point;
 mod error;
 mod geometry;
+mod gmsh;
+mod openfoam;
 mod poly_mesh;
 mod quality;
+mod surface;
 
 pub mod generators;
 
 pub use cell_shapes::{CellShape, CellType};
+pub use cell_to_point::{CellToPoint, PointFit, EIGEN_TOLERANCE, MAX_WEIGHT_SUM};
 pub use error::MeshError;
 pub use geometry::MeshGeometry;
+pub use gmsh::{read_gmsh, read_gmsh_bytes};
+pub use openfoam::{face_connected_regions, read_polymesh, select_body};
 pub use poly_mesh::{CellZone, Patch, PolyMesh};
 pub use quality::MeshQuality;
+pub use surface::{PointNormalWeighting, Surface, NO_FACE};
 
 /// Scalar type used everywhere.
 pub type Real = f64;

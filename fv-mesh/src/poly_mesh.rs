@@ -574,6 +574,28 @@ impl PolyMesh {
             *p = *p * scale + translate;
         }
     }
+
+    /// Cells around every point (CSR: offsets, cell indices sorted ascending).
+    pub fn point_cells(&self) -> (Vec<u32>, Vec<u32>) {
+        let (cp_off, cp) = self.cell_points();
+        let np = self.points.len();
+        let mut offsets = vec![0u32; np + 1];
+        for &p in &cp {
+            offsets[p as usize + 1] += 1;
+        }
+        for i in 0..np {
+            offsets[i + 1] += offsets[i];
+        }
+        let mut fill = offsets.clone();
+        let mut cells = vec![0u32; cp.len()];
+        for c in 0..self.n_cells {
+            for &p in &cp[cp_off[c] as usize..cp_off[c + 1] as usize] {
+                cells[fill[p as usize] as usize] = c as u32;
+                fill[p as usize] += 1;
+            }
+        }
+        (offsets, cells)
+    }
 }
 
 /// Centre and area vector of a polygon by a triangle fan about its point

@@ -58,6 +58,8 @@ pub struct SolidMomentum {
     pub face_force: Vec<Vector>,
     /// Force residual F_P of every cell.
     pub residual: Vec<Vector>,
+    /// Body force per unit volume ρb (eq. 3.18), per cell; empty = none.
+    pub body_force: Vec<Vector>,
 }
 
 impl SolidMomentum {
@@ -88,6 +90,7 @@ impl SolidMomentum {
             sigma: vec![Tensor::zeros(); mesh.n_cells],
             face_force: vec![Vector::zeros(); nb],
             residual: vec![Vector::zeros(); mesh.n_cells],
+            body_force: Vec::new(),
         };
         s.update_geometry(mesh, geom);
         s
@@ -216,7 +219,18 @@ impl SolidMomentum {
         params: &MomentumParams,
     ) {
         let ni = mesh.n_internal_faces();
-        self.residual.iter_mut().for_each(|r| *r = Vector::zeros());
+        if self.body_force.len() == self.residual.len() {
+            for ((r, b), v) in self
+                .residual
+                .iter_mut()
+                .zip(&self.body_force)
+                .zip(&geom.cell_volumes)
+            {
+                *r = b * *v;
+            }
+        } else {
+            self.residual.iter_mut().for_each(|r| *r = Vector::zeros());
+        }
         let alpha = params.rhie_chow;
         for f in 0..ni {
             let o = mesh.owner[f] as usize;

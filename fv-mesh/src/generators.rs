@@ -203,6 +203,93 @@ pub fn annulus_mesh(
     )
 }
 
+/// Box `[min, max]` of tetrahedra: every hexahedron of a `cells` grid split
+/// into six by the Kuhn (Freudenthal) subdivision, which is conforming
+/// across neighbours. Patches as for [`box_mesh`].
+pub fn box_tet_mesh(min: Vector, max: Vector, cells: [usize; 3]) -> Result<PolyMesh, MeshError> {
+    let hex = box_mesh(min, max, cells, [1.0; 3])?;
+    let [nx, ny, _] = cells;
+    let idx = |i: usize, j: usize, k: usize| (i + (nx + 1) * (j + (ny + 1) * k)) as u32;
+    let perms = [[0, 1, 2], [0, 2, 1], [1, 0, 2], [1, 2, 0], [2, 0, 1], [2, 1, 0]];
+    let mut shapes = Vec::with_capacity(hex.n_cells * 6);
+    for k in 0..cells[2] {
+        for j in 0..cells[1] {
+            for i in 0..cells[0] {
+                for p in perms {
+                    let mut c = [i, j, k];
+                    let mut nodes = vec![idx(c[0], c[1], c[2])];
+                    for &axis in &p {
+                        c[axis] += 1;
+                        nodes.push(idx(c[0], c[1], c[2]));
+                    }
+                    shapes.push(CellShape {
+                        kind: CellType::Tetra,
+                        nodes,
+                    });
+                }
+            }
+        }
+    }
+    let mut mesh = PolyMesh::from_cells(hex.points, shapes, &[])?;
+    classify_box_boundary(&mut mesh, min, max)?;
+    Ok(mesh)
+}
+
+/// Regroups all boundary faces of a mesh filling the box `[min, max]` into
+/// the patches `xmin xmax ymin ymax zmin zmax` by face-centre position.
+fn classify_box_boundary(mesh: &mut PolyMesh, min: Vector, max: Vector) -> Result<(), MeshError> {
+    let names = ["xmin", "xmax", "ymin", "ymax", "zmin", "zmax"];
+    let ni = mesh.n_internal_faces();
+    let tol = 1e-9 * (max - min).norm();
+    let mut groups: Vec<Vec<usize>> = vec![Vec::new(); 6];
+    for f in ni..mesh.n_faces() {
+        let pts = mesh.face(f);
+        let c = pts.iter().fold(Vector::zeros(), |a, &p| a + mesh.points[p as usize])
+            / pts.len() as f64;
+        let g = (0..6).find(|&g| {
+            let d = g / 2;
+            let target = if g % 2 == 0 { min[d] } else { max[d] };
+            (c[d] - target).abs() < tol
+        });
+        match g {
+            Some(g) => groups[g].push(f),
+            None => return Err(MeshError::invalid(format!("boundary face {f} is not on the box"))),
+        }
+    }
+    let mut faces = Vec::with_capacity(mesh.n_faces());
+    let mut owner = Vec::with_capacity(mesh.n_faces());
+    for f in 0..ni {
+        faces.push(mesh.face(f).to_vec());
+        owner.push(mesh.owner[f]);
+    }
+    let mut patches = Vec::new();
+    for (g, list) in groups.iter().enumerate() {
+        patches.push(crate::Patch {
+            name: names[g].to_string(),
+            start: faces.len(),
+            size: list.len(),
+            source_type: "patch".into(),
+        });
+        for &f in list {
+            faces.push(mesh.face(f).to_vec());
+            owner.push(mesh.owner[f]);
+        }
+    }
+    let shapes = mesh.cell_shapes.take();
+    let n_cells = mesh.n_cells;
+    let mut m = PolyMesh::new(
+        std::mem::take(&mut mesh.points),
+        faces,
+        owner,
+        std::mem::take(&mut mesh.neighbour),
+        patches,
+    )?;
+    m.n_cells = n_cells;
+    m.cell_shapes = shapes;
+    *mesh = m;
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -233,6 +320,17 @@ mod tests {
         let ymax = &m.patches[3];
         let area: f64 = ymax.faces().map(|f| g.face_areas[f].y).sum();
         assert!((area - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn tet_box_is_closed_and_conforming() {
+        let m = box_tet_mesh(Vector::zeros(), Vector::new(1.0, 2.0, 1.0), [3, 2, 2]).unwrap();
+        assert_eq!(m.n_cells, 72);
+        let g = MeshGeometry::new(&m).unwrap();
+        assert!((g.total_volume() - 2.0).abs() < 1e-12);
+        // every boundary face on one of the six sides: 2 triangles per quad
+        let sizes: Vec<usize> = m.patches.iter().map(|p| p.size).collect();
+        assert_eq!(sizes, [8, 8, 12, 12, 12, 12]);
     }
 
     #[test]

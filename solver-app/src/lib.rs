@@ -1,1 +1,19 @@
-//! solver-app
+//! The `fvc` application as a library: case file, model set-up, the
+//! segregated solution procedure of thesis §3.3, and the result files.
+//!
+//! ```no_run
+//! use solver_app::{case::load_case, run::{run_case, RunOptions}};
+//! let case = load_case(std::path::Path::new("examples/lame-cylinder/case.toml"))?;
+//! let outcome = run_case(&case, &RunOptions::default())?;
+//! println!("converged: {}", outcome.converged);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+#![warn(missing_docs)]
+
+pub mod case;
+pub mod check;
+pub mod mesh_loading;
+pub mod model;
+pub mod results;
+pub mod run;
+pub mod segregated;

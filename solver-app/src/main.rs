@@ -1,1 +1,123 @@
-fn main() {}
+//! `fvc`: the fvcontact command-line solver (CASE_FORMAT.md, "Command line").
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+use solver_app::case::load_case;
+use solver_app::run::{run_case, set_up, RunError, RunOptions};
+
+/// Finite-volume solver for large-deformation frictional contact.
+#[derive(Parser)]
+#[command(name = "fvc", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Solve a case.
+    Run {
+        /// The case file (TOML).
+        case: PathBuf,
+        /// Results directory (overrides [output] directory).
+        #[arg(long)]
+        output: Option<PathBuf>,
+        /// Worker threads (default: all cores).
+        #[arg(long)]
+        threads: Option<usize>,
+        /// No progress bar: one log line per increment.
+        #[arg(long)]
+        quiet: bool,
+    },
+    /// Validate a case and report its meshes, without solving.
+    Check {
+        /// The case file (TOML).
+        case: PathBuf,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(c) => c,
+        Err(e) => {
+            let code = if e.use_stderr() { 2 } else { 0 };
+            let _ = e.print();
+            return ExitCode::from(code);
+        }
+    };
+    tracing_subscriber::fmt()
+        .with_writer(std::io::stderr)
+        .with_target(false)
+        .without_time()
+        .with_level(false)
+        .init();
+    match cli.command {
+        Command::Check { case } => {
+            let case = match load_case(&case) {
+                Ok(c) => c,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return ExitCode::from(2);
+                }
+            };
+            match set_up(&case) {
+                Ok(bodies) => {
+                    print!("{}", solver_app::check::mesh_report(&case, &bodies));
+                    println!("case is valid");
+                    ExitCode::SUCCESS
+                }
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::from(2)
+                }
+            }
+        }
+        Command::Run {
+            case,
+            output,
+            threads,
+            quiet,
+        } => {
+            if let Some(n) = threads {
+                if n == 0 {
+                    eprintln!("error: --threads must be at least 1");
+                    return ExitCode::from(2);
+                }
+                let _ = rayon::ThreadPoolBuilder::new()
+                    .num_threads(n)
+                    .build_global();
+            }
+            let case = match load_case(&case) {
+                Ok(c) => c,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return ExitCode::from(2);
+                }
+            };
+            let opts = RunOptions {
+                output,
+                quiet,
+                no_files: false,
+            };
+            match run_case(&case, &opts) {
+                Ok(out) if out.converged => ExitCode::SUCCESS,
+                Ok(out) => {
+                    eprintln!(
+                        "error: {}",
+                        out.failure.as_deref().unwrap_or("the run did not converge")
+                    );
+                    ExitCode::from(1)
+                }
+                Err(RunError::Input(e)) => {
+                    eprintln!("error: {e}");
+                    ExitCode::from(2)
+                }
+                Err(e @ RunError::Output(_)) => {
+                    eprintln!("error: {e}");
+                    ExitCode::from(1)
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,58 @@
+//! `fvc check`: validate a case and report its meshes without solving.
+use std::fmt::Write;
+
+use crate::case::Case;
+use crate::model::Body;
+use fv_mesh::MeshQuality;
+
+/// The mesh report printed by `fvc check`.
+pub fn mesh_report(case: &Case, bodies: &[Body]) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "case '{}': {} bodies", case.title, bodies.len());
+    for b in bodies {
+        let q = MeshQuality::new(&b.mesh, &b.geom);
+        let _ = writeln!(
+            s,
+            "body '{}'{}: {} cells, {} faces ({} internal), {} points, volume {:.6e}",
+            b.name,
+            if b.rigid { " (rigid)" } else { "" },
+            b.mesh.n_cells,
+            b.mesh.n_faces(),
+            b.mesh.n_internal_faces(),
+            b.mesh.n_points(),
+            b.geom.total_volume()
+        );
+        let _ = writeln!(
+            s,
+            "  non-orthogonality: max {:.2}°, mean {:.2}°; max skewness {:.3}; cell volume {:.3e} … {:.3e}",
+            q.max_non_orthogonality, q.mean_non_orthogonality, q.max_skewness, q.min_volume, q.max_volume
+        );
+        let _ = writeln!(s, "  patches ({}):", b.mesh.patches.len());
+        for (p, spec) in b.mesh.patches.iter().zip(&b.patch_specs) {
+            let area: f64 = p.faces().map(|f| b.geom.face_mag[f]).sum();
+            let cond = spec.as_ref().map(spec_name).unwrap_or("traction-free");
+            let _ = writeln!(
+                s,
+                "    {:<24} {:>8} faces  area {:.6e}  {}",
+                p.name, p.size, area, cond
+            );
+        }
+    }
+    s
+}
+
+/// The `type` name of a boundary condition.
+pub fn spec_name(s: &crate::case::BoundarySpec) -> &'static str {
+    use crate::case::BoundarySpec as B;
+    match s {
+        B::Displacement { .. } => "displacement",
+        B::NormalDisplacement { .. } => "normal-displacement",
+        B::Traction { .. } => "traction",
+        B::Pressure { .. } => "pressure",
+        B::Force { .. } => "force",
+        B::Symmetry => "symmetry",
+        B::Empty => "empty",
+        B::Wedge => "wedge",
+        B::RigidMotion { .. } => "rigid-motion",
+    }
+}

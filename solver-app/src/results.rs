@@ -1,0 +1,160 @@
+//! Result files of a run: `history.csv`, `summary.json`, `log.txt`
+//! (CASE_FORMAT.md, "Results"). Each is written so that a run killed at any
+//! moment leaves what was already written readable: history rows are
+//! flushed per increment, the summary is replaced atomically.
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+use crate::model::Body;
+use fv_mesh::Vector;
+
+/// The run log: every line goes to `log.txt` (flushed) and to `tracing`.
+pub struct RunLog {
+    file: Option<BufWriter<File>>,
+}
+
+impl RunLog {
+    /// Opens `<dir>/log.txt`.
+    pub fn create(dir: &Path) -> std::io::Result<Self> {
+        Ok(RunLog {
+            file: Some(BufWriter::new(File::create(dir.join("log.txt"))?)),
+        })
+    }
+
+    /// A log that only forwards to `tracing`.
+    pub fn none() -> Self {
+        RunLog { file: None }
+    }
+
+    /// Writes an informational line.
+    pub fn info(&mut self, msg: &str) {
+        tracing::info!("{msg}");
+        self.write(msg);
+    }
+
+    /// Writes a warning line.
+    pub fn warn(&mut self, msg: &str) {
+        tracing::warn!("{msg}");
+        self.write(&format!("warning: {msg}"));
+    }
+
+    /// Writes a line to the file only (the progress bar shows it on a TTY).
+    pub fn write(&mut self, msg: &str) {
+        if let Some(f) = &mut self.file {
+            let _ = writeln!(f, "{msg}");
+            let _ = f.flush();
+        }
+    }
+}
+
+/// `history.csv`: one row per increment.
+pub struct History {
+    out: BufWriter<File>,
+}
+
+/// Reported patches: (body index, patch index, "<body>/<patch>").
+pub fn reported_patches(bodies: &[Body]) -> Vec<(usize, usize, String)> {
+    let mut v = Vec::new();
+    for (bi, b) in bodies.iter().enumerate() {
+        for p in b.reported_patches() {
+            v.push((bi, p, format!("{}/{}", b.name, b.mesh.patches[p].name)));
+        }
+    }
+    v
+}
+
+impl History {
+    /// Creates the file and writes the header.
+    pub fn create(dir: &Path, bodies: &[Body]) -> std::io::Result<Self> {
+        let mut out = BufWriter::new(File::create(dir.join("history.csv"))?);
+        write!(out, "time,outer_iterations,residual")?;
+        for (_, _, name) in reported_patches(bodies) {
+            write!(out, ",{name}:Fx,{name}:Fy,{name}:Fz")?;
+        }
+        writeln!(out)?;
+        out.flush()?;
+        Ok(History { out })
+    }
+
+    /// Appends one row and flushes it.
+    pub fn append(
+        &mut self,
+        time: f64,
+        outer: usize,
+        residual: f64,
+        bodies: &[Body],
+    ) -> std::io::Result<()> {
+        write!(self.out, "{time:.10e},{outer},{residual:.6e}")?;
+        for (bi, p, _) in reported_patches(bodies) {
+            let f = patch_reaction(&bodies[bi], p);
+            write!(self.out, ",{:.10e},{:.10e},{:.10e}", f.x, f.y, f.z)?;
+        }
+        writeln!(self.out)?;
+        self.out.flush()
+    }
+}
+
+/// Reaction force of patch `p`: ∫ σ·n dA, the force exerted on the body
+/// through the patch (zero for a rigid body, which carries no stress).
+pub fn patch_reaction(body: &Body, p: usize) -> Vector {
+    if body.rigid {
+        Vector::zeros()
+    } else {
+        body.momentum.patch_force(&body.mesh, p)
+    }
+}
+
+/// Data of `summary.json`.
+#[derive(Debug, Clone, Default)]
+pub struct Summary {
+    /// Case title.
+    pub title: String,
+    /// All increments converged (or were accepted with `continue`).
+    pub converged: bool,
+    /// Increments completed.
+    pub increments: usize,
+    /// Total outer iterations.
+    pub outer_iterations: usize,
+    /// Total linear-solver iterations.
+    pub linear_iterations: usize,
+    /// Wall-clock seconds.
+    pub wall_seconds: f64,
+    /// Cells of all bodies.
+    pub cells: usize,
+    /// Why the run failed, if it did.
+    pub failure: Option<String>,
+}
+
+/// Writes `summary.json` (atomically: temp file + rename).
+pub fn write_summary(dir: &Path, s: &Summary, bodies: &[Body]) -> std::io::Result<PathBuf> {
+    let mut patches = serde_json::Map::new();
+    for (bi, p, name) in reported_patches(bodies) {
+        let b = &bodies[bi];
+        let f = patch_reaction(b, p);
+        let area: f64 = b.mesh.patches[p].faces().map(|f| b.geom.face_mag[f]).sum();
+        patches.insert(
+            name,
+            serde_json::json!({ "reaction_force": [f.x, f.y, f.z], "area": area }),
+        );
+    }
+    let mut v = serde_json::json!({
+        "title": s.title,
+        "converged": s.converged,
+        "increments": s.increments,
+        "outer_iterations": s.outer_iterations,
+        "linear_iterations": s.linear_iterations,
+        "wall_seconds": s.wall_seconds,
+        "cells": s.cells,
+        "patches": patches,
+        "contacts": [],
+    });
+    if let Some(reason) = &s.failure {
+        v["failure"] = serde_json::Value::String(reason.clone());
+    }
+    let path = dir.join("summary.json");
+    let tmp = dir.join("summary.json.tmp");
+    std::fs::write(&tmp, serde_json::to_string_pretty(&v).unwrap_or_default() + "\n")?;
+    std::fs::rename(&tmp, &path)?;
+    Ok(path)
+}

@@ -1,0 +1,215 @@
+//! `fvc run`: load, set up, solve every increment, write results.
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::time::Instant;
+
+use crate::case::{Case, InputError, OnNonConvergence};
+use crate::mesh_loading::load_mesh;
+use crate::model::{build_bodies, Body};
+use crate::results::{write_summary, History, RunLog, Summary};
+use crate::segregated::SegregatedSolver;
+
+/// Command-line options of `fvc run`.
+#[derive(Debug, Clone, Default)]
+pub struct RunOptions {
+    /// Overrides `[output] directory`.
+    pub output: Option<PathBuf>,
+    /// No progress bar; one log line per increment.
+    pub quiet: bool,
+    /// Write no files (tests and benchmarks).
+    pub no_files: bool,
+}
+
+/// Result of a run.
+pub struct RunOutcome {
+    /// Every increment converged (or `continue` was asked).
+    pub converged: bool,
+    /// Why the run stopped early.
+    pub failure: Option<String>,
+    /// The bodies with their final fields.
+    pub bodies: Vec<Body>,
+    /// Summary figures.
+    pub summary: Summary,
+    /// Results directory (`None` with `no_files`).
+    pub directory: Option<PathBuf>,
+}
+
+/// Errors that stop a run before it starts.
+#[derive(Debug, thiserror::Error)]
+pub enum RunError {
+    /// Bad input: exit code 2.
+    #[error("{0}")]
+    Input(#[from] InputError),
+    /// The results directory could not be written: exit code 1.
+    #[error("cannot write results: {0}")]
+    Output(String),
+}
+
+/// Loads every body's mesh and builds the model (shared by `run` and `check`).
+pub fn set_up(case: &Case) -> Result<Vec<Body>, InputError> {
+    let mut meshes = Vec::with_capacity(case.bodies.len());
+    for (i, b) in case.bodies.iter().enumerate() {
+        meshes.push(load_mesh(&b.mesh, i, &case.source)?);
+    }
+    build_bodies(case, meshes)
+}
+
+/// Runs a validated case to the end (or to its first failure).
+pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> {
+    let start = Instant::now();
+    let mut bodies = set_up(case)?;
+    let dir = if opts.no_files {
+        None
+    } else {
+        let base = opts
+            .output
+            .clone()
+            .unwrap_or_else(|| case.output.directory.clone());
+        let dir = base.join(&case.title);
+        std::fs::create_dir_all(&dir)
+            .map_err(|e| RunError::Output(format!("{}: {e}", dir.display())))?;
+        Some(dir)
+    };
+    let io_err = |e: std::io::Error| RunError::Output(e.to_string());
+    let mut log = match &dir {
+        Some(d) => RunLog::create(d).map_err(io_err)?,
+        None => RunLog::none(),
+    };
+    let mut history = match &dir {
+        Some(d) => Some(History::create(d, &bodies).map_err(io_err)?),
+        None => None,
+    };
+    let cells: usize = bodies.iter().map(|b| b.mesh.n_cells).sum();
+    let mut summary = Summary {
+        title: case.title.clone(),
+        converged: true,
+        cells,
+        ..Default::default()
+    };
+    log.info(&format!(
+        "case '{}' ({}): {} bodies, {} cells, {} increments",
+        case.title,
+        case.source.path.display(),
+        bodies.len(),
+        cells,
+        case.time.steps
+    ));
+
+    let mut solver = SegregatedSolver::new(&bodies, &case.solver);
+    let mut failure: Option<String> = None;
+    let tty = std::io::stderr().is_terminal() && !opts.quiet && !opts.no_files;
+    let bar = if tty {
+        let pb = indicatif::ProgressBar::new(case.time.steps as u64);
+        pb.set_style(
+            indicatif::ProgressStyle::with_template(
+                "{spinner} [{elapsed_precise}] {bar:30} increment {pos}/{len} {msg}",
+            )
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        );
+        Some(pb)
+    } else {
+        None
+    };
+
+    if let Err(e) = solver.assemble_and_factorise(&bodies, &case.solver.linear) {
+        let msg = e.to_string();
+        if matches!(e, crate::segregated::SolveError::Unconstrained { .. }) {
+            return Err(RunError::Input(InputError::new(&case.source.path, msg)));
+        }
+        failure = Some(msg);
+    }
+    let dt = case.time.dt();
+    let solve_start = Instant::now();
+    let mut cell_iterations = 0.0;
+    for k in 1..=case.time.steps {
+        if failure.is_some() {
+            break;
+        }
+        let t = if k == case.time.steps {
+            case.time.end
+        } else {
+            dt * k as f64
+        };
+        for b in bodies.iter_mut() {
+            b.refresh_conditions(t);
+        }
+        let result = solver.solve_increment(&mut bodies, |outer, res| {
+            if let Some(pb) = &bar {
+                if outer % 10 == 0 {
+                    pb.set_message(format!("outer {outer} residual {res:.2e}"));
+                }
+            }
+        });
+        match result {
+            Ok(info) => {
+                summary.increments = k;
+                summary.outer_iterations += info.outer_iterations;
+                summary.linear_iterations += info.linear_iterations;
+                cell_iterations += (info.outer_iterations * solver.n_unknowns()) as f64;
+                let line = format!(
+                    "increment {k}/{} t = {t:.6e}: {} outer iterations, residual {:.3e}, {} linear iterations{}",
+                    case.time.steps,
+                    info.outer_iterations,
+                    info.residual,
+                    info.linear_iterations,
+                    if info.converged { "" } else { " (NOT converged)" }
+                );
+                if let Some(pb) = &bar {
+                    pb.inc(1);
+                    log.write(&line);
+                } else if opts.quiet || !opts.no_files {
+                    log.info(&line);
+                }
+                if let Some(h) = &mut history {
+                    h.append(t, info.outer_iterations, info.residual, &bodies)
+                        .map_err(io_err)?;
+                }
+                if !info.converged {
+                    let msg = format!(
+                        "increment {k} did not converge in {} outer iterations (residual {:.3e} > tolerance {:.1e})",
+                        info.outer_iterations, info.residual, case.solver.tolerance
+                    );
+                    match case.solver.on_nonconvergence {
+                        OnNonConvergence::Abort => {
+                            failure = Some(msg);
+                        }
+                        OnNonConvergence::Continue => {
+                            log.warn(&msg);
+                            summary.converged = false;
+                        }
+                    }
+                }
+            }
+            Err(e) => failure = Some(format!("increment {k}: {e}")),
+        }
+    }
+    if let Some(pb) = &bar {
+        pb.finish_and_clear();
+    }
+    let solve_seconds = solve_start.elapsed().as_secs_f64();
+    summary.wall_seconds = start.elapsed().as_secs_f64();
+    if let Some(f) = &failure {
+        summary.converged = false;
+        summary.failure = Some(f.clone());
+        log.warn(&format!("run failed: {f}"));
+    }
+    if cell_iterations > 0.0 {
+        log.info(&format!(
+            "cost: {:.3} µs per cell per outer iteration; {:.1} outer iterations per increment; {} linear iterations in all",
+            solve_seconds * 1e6 / cell_iterations,
+            summary.outer_iterations as f64 / summary.increments.max(1) as f64,
+            summary.linear_iterations
+        ));
+    }
+    if let Some(d) = &dir {
+        write_summary(d, &summary, &bodies).map_err(io_err)?;
+        log.info(&format!("results in {}", d.display()));
+    }
+    Ok(RunOutcome {
+        converged: failure.is_none(),
+        failure,
+        bodies,
+        summary,
+        directory: dir,
+    })
+}

@@ -1,0 +1,299 @@
+//! The segregated solution procedure of thesis §3.3: one global sparse
+//! system for all deformable bodies, outer (Picard) iterations, and one
+//! linear solve per displacement component.
+use crate::case::{LinearMethod, LinearSettings, SolverSettings};
+use crate::model::Body;
+use fv_discretise::{CsrMatrix, FaceSlots, LinearSolver, LinearSolverError, MomentumParams};
+use fv_mesh::Vector;
+
+/// Outcome of one load increment.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct IncrementInfo {
+    /// Outer iterations used.
+    pub outer_iterations: usize,
+    /// Relative residual at exit.
+    pub residual: f64,
+    /// Whether the tolerance was reached.
+    pub converged: bool,
+    /// Linear-solver iterations, summed over components and outer iterations.
+    pub linear_iterations: usize,
+}
+
+/// Why an increment failed.
+#[derive(Debug, thiserror::Error)]
+pub enum SolveError {
+    /// The linear solver failed.
+    #[error("linear solver: {0}")]
+    Linear(#[from] LinearSolverError),
+    /// NaN or infinity appeared in the solution.
+    #[error("the solution diverged (non-finite displacement) in outer iteration {0}")]
+    Diverged(usize),
+    /// The matrix is singular: a body cannot carry load in some direction.
+    #[error("body '{body}' is not held in the {axis} direction: give it a displacement, symmetry or normal-displacement condition (no rigid-body motion can be solved statically)")]
+    Unconstrained {
+        /// Body name.
+        body: String,
+        /// "x", "y" or "z".
+        axis: &'static str,
+    },
+}
+
+/// The global linear system and the workspaces of the outer loop; built
+/// once, refilled when the geometry or the material stiffness changes.
+pub struct SegregatedSolver {
+    /// One matrix per distinct component diagonal (usually one).
+    matrices: Vec<CsrMatrix>,
+    /// Matrix (index into `matrices`) of each component; `None` = not solved
+    /// (the empty direction of a 2-D model).
+    component_matrix: [Option<usize>; 3],
+    /// One factorised solver per matrix.
+    solvers: Vec<Box<dyn LinearSolver + Send>>,
+    slots: FaceSlots,
+    rhs: Vec<f64>,
+    x: Vec<f64>,
+    delta: Vec<Vector>,
+    n: usize,
+    params: MomentumParams,
+    relaxation: f64,
+    tolerance: f64,
+    max_outer: usize,
+}
+
+fn make_solver(s: &LinearSettings, n: usize) -> Box<dyn LinearSolver + Send> {
+    match s.method {
+        LinearMethod::PcgIc => Box::new(fv_discretise::PcgIc0::with_params(
+            n,
+            fv_discretise::PcgParams {
+                tolerance: s.tolerance,
+                max_iterations: s.max_iterations,
+            },
+        )),
+        LinearMethod::BicgstabIlu => Box::new(fv_discretise::BicgstabIlu0::with_params(
+            n,
+            fv_discretise::BicgstabParams {
+                tolerance: s.tolerance,
+                max_iterations: s.max_iterations,
+            },
+        )),
+        LinearMethod::Direct => Box::new(fv_discretise::DirectSolver::new(fv_discretise::DirectMethod::Cholesky)),
+    }
+}
+
+/// Directions (0, 1, 2) that are out of plane for every body: all faces of
+/// all `empty` patches have their normal along that axis.
+fn empty_directions(bodies: &[Body]) -> [bool; 3] {
+    let mut any = false;
+    let mut along = [true; 3];
+    for b in bodies.iter().filter(|b| !b.rigid) {
+        for (p, c) in b.mesh.patches.iter().zip(&b.momentum.conditions) {
+            if let fv_discretise::PatchCondition::Empty = c {
+                for f in p.faces() {
+                    any = true;
+                    let n = b.geom.face_normals[f];
+                    for d in 0..3 {
+                        if n[d].abs() < 1.0 - 1e-6 {
+                            along[d] = false;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    if any {
+        along
+    } else {
+        [false; 3]
+    }
+}
+
+impl SegregatedSolver {
+    /// Builds the global pattern of the deformable bodies.
+    pub fn new(bodies: &[Body], settings: &SolverSettings) -> Self {
+        let mut owner = Vec::new();
+        let mut neighbour = Vec::new();
+        let mut n = 0;
+        for b in bodies.iter().filter(|b| !b.rigid) {
+            let off = b.offset as u32;
+            let ni = b.mesh.n_internal_faces();
+            owner.extend(b.mesh.owner[..ni].iter().map(|&o| o + off));
+            neighbour.extend(b.mesh.neighbour.iter().map(|&x| x + off));
+            n = n.max(b.offset + b.mesh.n_cells);
+        }
+        let (matrix, slots) = CsrMatrix::from_faces(n, &owner, &neighbour);
+        SegregatedSolver {
+            matrices: vec![matrix],
+            component_matrix: [Some(0), Some(0), Some(0)],
+            solvers: Vec::new(),
+            slots,
+            rhs: vec![0.0; n],
+            x: vec![0.0; n],
+            delta: vec![Vector::zeros(); n],
+            n,
+            params: MomentumParams {
+                rhie_chow: settings.rhie_chow,
+            },
+            relaxation: settings.relaxation,
+            tolerance: settings.tolerance,
+            max_outer: settings.max_outer,
+        }
+    }
+
+    /// Number of unknowns per component.
+    pub fn n_unknowns(&self) -> usize {
+        self.n
+    }
+
+    /// Components solved (false for the empty direction of 2-D models).
+    pub fn solved_components(&self) -> [bool; 3] {
+        self.component_matrix.map(|m| m.is_some())
+    }
+
+    /// Assembles the implicit (2μ+λ) Laplacian (eq. 3.29, a_P and a_N) and
+    /// factorises it: one factorisation per distinct component diagonal.
+    pub fn assemble_and_factorise(
+        &mut self,
+        bodies: &[Body],
+        linear: &LinearSettings,
+    ) -> Result<(), SolveError> {
+        let base = &mut self.matrices[0];
+        base.fill_zero();
+        let mut diag = vec![0.0; self.n];
+        {
+            let v = base.values_mut();
+            let mut g = 0;
+            for b in bodies.iter().filter(|b| !b.rigid) {
+                for f in 0..b.mesh.n_internal_faces() {
+                    let a = b.momentum.face_coefficient(&b.geom, f);
+                    v[self.slots.upper[g] as usize] -= a;
+                    v[self.slots.lower[g] as usize] -= a;
+                    diag[b.offset + b.mesh.owner[f] as usize] += a;
+                    diag[b.offset + b.mesh.neighbour[f] as usize] += a;
+                    g += 1;
+                }
+            }
+        }
+        let empty = empty_directions(bodies);
+        let mut diags: Vec<Vec<f64>> = Vec::new();
+        let mut comp = [None; 3];
+        for c in 0..3 {
+            if empty[c] {
+                continue;
+            }
+            let mut d = diag.clone();
+            for b in bodies.iter().filter(|b| !b.rigid) {
+                let slice = &mut d[b.offset..b.offset + b.mesh.n_cells];
+                let before: f64 = slice.iter().sum();
+                b.momentum
+                    .add_boundary_diagonal(&b.mesh, &b.geom, c, slice);
+                let after: f64 = slice.iter().sum();
+                if !(after > before * (1.0 + 1e-12)) {
+                    return Err(SolveError::Unconstrained {
+                        body: b.name.clone(),
+                        axis: ["x", "y", "z"][c],
+                    });
+                }
+            }
+            comp[c] = Some(match diags.iter().position(|e| *e == d) {
+                Some(i) => i,
+                None => {
+                    diags.push(d);
+                    diags.len() - 1
+                }
+            });
+        }
+        let template = self.matrices[0].clone();
+        self.matrices.truncate(1);
+        while self.matrices.len() < diags.len() {
+            self.matrices.push(template.clone());
+        }
+        for (m, d) in self.matrices.iter_mut().zip(&diags) {
+            let di: Vec<u32> = m.diag_index().to_vec();
+            let v = m.values_mut();
+            for (i, &k) in di.iter().enumerate() {
+                v[k as usize] = d[i];
+            }
+        }
+        while self.solvers.len() < self.matrices.len() {
+            self.solvers.push(make_solver(linear, self.n));
+        }
+        self.solvers.truncate(self.matrices.len());
+        for (s, m) in self.solvers.iter_mut().zip(&self.matrices) {
+            s.factorise(m)?;
+        }
+        self.component_matrix = comp;
+        Ok(())
+    }
+
+    /// Solves one load increment by outer iterations; on entry the bodies
+    /// hold the converged fields of the previous increment and the boundary
+    /// values of this one.
+    pub fn solve_increment(
+        &mut self,
+        bodies: &mut [Body],
+        mut on_iteration: impl FnMut(usize, f64),
+    ) -> Result<IncrementInfo, SolveError> {
+        let u_old: Vec<Vec<Vector>> = bodies.iter().map(|b| b.momentum.u.clone()).collect();
+        let mut info = IncrementInfo::default();
+        let scale = bodies
+            .iter()
+            .flat_map(|b| b.mesh.points.iter())
+            .fold(0.0f64, |a, p| a.max(p.norm()))
+            .max(1e-300);
+        for outer in 1..=self.max_outer {
+            for b in bodies.iter_mut().filter(|b| !b.rigid) {
+                let m = &mut b.momentum;
+                m.update_boundary_values(&b.mesh, &b.geom, b.material.as_ref());
+                m.update_gradient_and_stress(&b.mesh, b.material.as_ref());
+                m.compute_residual(&b.mesh, &b.geom, b.material.as_ref(), &self.params);
+            }
+            for c in 0..3 {
+                let Some(mi) = self.component_matrix[c] else {
+                    self.delta.iter_mut().for_each(|d| d[c] = 0.0);
+                    continue;
+                };
+                for b in bodies.iter().filter(|b| !b.rigid) {
+                    for (i, r) in b.momentum.residual.iter().enumerate() {
+                        self.rhs[b.offset + i] = r[c];
+                    }
+                }
+                self.x.iter_mut().for_each(|x| *x = 0.0);
+                let si = self.solvers[mi].solve(&self.matrices[mi], &self.rhs, &mut self.x)?;
+                info.linear_iterations += si.iterations;
+                for (d, &x) in self.delta.iter_mut().zip(&self.x) {
+                    d[c] = x;
+                }
+            }
+            let mut norm_delta = 0.0;
+            let mut norm_incr = 0.0;
+            for (b, old) in bodies.iter_mut().zip(&u_old).filter(|(b, _)| !b.rigid) {
+                let off = b.offset;
+                for (i, u) in b.momentum.u.iter_mut().enumerate() {
+                    let d = self.delta[off + i] * self.relaxation;
+                    *u += d;
+                    norm_delta += d.norm_squared();
+                    norm_incr += (*u - old[i]).norm_squared();
+                }
+            }
+            if !norm_delta.is_finite() {
+                return Err(SolveError::Diverged(outer));
+            }
+            let floor = 1e-14 * scale * (self.n as f64).sqrt();
+            let residual = norm_delta.sqrt() / norm_incr.sqrt().max(floor);
+            info.outer_iterations = outer;
+            info.residual = residual;
+            on_iteration(outer, residual);
+            if residual < self.tolerance {
+                info.converged = true;
+                break;
+            }
+        }
+        // fields consistent with the final displacement
+        for b in bodies.iter_mut().filter(|b| !b.rigid) {
+            let m = &mut b.momentum;
+            m.update_boundary_values(&b.mesh, &b.geom, b.material.as_ref());
+            m.update_gradient_and_stress(&b.mesh, b.material.as_ref());
+            m.compute_residual(&b.mesh, &b.geom, b.material.as_ref(), &self.params);
+        }
+        Ok(info)
+    }
+}

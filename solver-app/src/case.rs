@@ -1,0 +1,315 @@
+//! The case file: TOML → validated, typed [`Case`].
+//!
+//! The format is the user-facing contract in `shared/CASE_FORMAT.md`. Every
+//! key is checked here — unknown keys, wrong types, out-of-range values and
+//! unknown names are [`InputError`]s naming the file, the line and the key
+//! path (e.g. `body[0].material.nu`). Checks that need the mesh (patch names)
+//! are the solver's, which reports them with [`CaseSource::error`].
+//!
+//! ```no_run
+//! let case = solver_app::case::load_case(std::path::Path::new("case.toml"))?;
+//! println!("{} increments of {}", case.time.steps, case.time.dt());
+//! # Ok::<(), solver_app::case::InputError>(())
+//! ```
+
+use std::path::Path;
+
+use toml::de::DeTable;
+
+mod boundary;
+mod contact;
+mod error;
+mod material;
+mod mesh;
+mod reader;
+mod settings;
+mod source;
+mod values;
+
+pub use boundary::{BoundarySpec, BOUNDARY_TYPES};
+pub use contact::{ContactAlgorithm, ContactSpec, Coupling, Detection};
+pub use error::InputError;
+pub use material::{MaterialModel, MaterialSpec};
+pub use mesh::{MeshSpec, GENERATORS};
+pub use settings::{
+    Analysis, AnalysisKind, LinearMethod, LinearSettings, OnNonConvergence, OutputSettings,
+    SolverSettings, StrainKind, TimeControl,
+};
+pub use source::CaseSource;
+pub use values::{Rotation, ScalarValue, VectorValue};
+
+use reader::{Ctx, Node, Res, Table};
+use source::LineIndex;
+
+/// A validated case.
+#[derive(Debug, Clone)]
+pub struct Case {
+    /// Name of the run; results go to `<output.directory>/<title>/`.
+    pub title: String,
+    /// `[analysis]`.
+    pub analysis: Analysis,
+    /// `[time]`.
+    pub time: TimeControl,
+    /// `[solver]`.
+    pub solver: SolverSettings,
+    /// `[[body]]`, in file order (at least one).
+    pub bodies: Vec<BodySpec>,
+    /// `[[contact]]`, in file order.
+    pub contacts: Vec<ContactSpec>,
+    /// `[output]`.
+    pub output: OutputSettings,
+    /// The file, its directory and the line of every key.
+    pub source: CaseSource,
+}
+
+/// One `[[body]]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BodySpec {
+    /// Unique, non-empty, without `/`.
+    pub name: String,
+    /// Where the mesh comes from.
+    pub mesh: MeshSpec,
+    /// Material.
+    pub material: MaterialSpec,
+    /// Not solved: every point follows its boundary motion (default false).
+    pub rigid: bool,
+    /// `(patch, condition)` in file order; unlisted patches are traction-free.
+    /// Patch names are checked against the mesh by the solver.
+    pub boundary: Vec<(String, BoundarySpec)>,
+}
+
+impl Case {
+    /// The body called `name`.
+    pub fn body(&self, name: &str) -> Option<&BodySpec> {
+        self.bodies.iter().find(|b| b.name == name)
+    }
+}
+
+/// Reads and validates the case file at `path`.
+///
+/// Errors: the file cannot be read; it is not UTF-8 (the message gives the
+/// line and byte offset of the first bad sequence); anything [`parse_case`]
+/// rejects.
+pub fn load_case(path: &Path) -> Result<Case, InputError> {
+    let bytes = std::fs::read(path)
+        .map_err(|e| InputError::new(path, format!("cannot read the case file: {e}")))?;
+    let text = String::from_utf8(bytes).map_err(|e| utf8_error(path, e))?;
+    let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
+    parse_case(text, path)
+}
+
+fn utf8_error(path: &Path, e: std::string::FromUtf8Error) -> InputError {
+    let bytes = e.as_bytes();
+    let at = e.utf8_error().valid_up_to();
+    let before = &bytes[..at];
+    let line = before.iter().filter(|&&b| b == b'\n').count() + 1;
+    let column = at
+        - before
+            .iter()
+            .rposition(|&b| b == b'\n')
+            .map_or(0, |p| p + 1)
+        + 1;
+    let bad_len = e.utf8_error().error_len().unwrap_or(bytes.len() - at);
+    let bad: Vec<String> = bytes[at..at + bad_len]
+        .iter()
+        .map(|b| format!("0x{b:02x}"))
+        .collect();
+    InputError::new(
+        path,
+        format!(
+            "not valid UTF-8: invalid byte sequence {} at byte {at} (line {line}, column {column}); \
+             save the file as UTF-8",
+            bad.join(" ")
+        ),
+    )
+    .at_line(line)
+}
+
+/// Parses and validates case text; `path` names the file in messages and
+/// its directory resolves relative mesh paths.
+pub fn parse_case(text: &str, path: &Path) -> Result<Case, InputError> {
+    let index = LineIndex::new(text);
+    let root = match DeTable::parse(text) {
+        Ok(root) => root,
+        Err(e) => {
+            let mut err = InputError::new(path, format!("TOML syntax error: {}", e.message()));
+            if let Some(span) = e.span() {
+                err = err.at_line(index.line(span.start));
+                let near = text.get(span.clone()).unwrap_or("").trim();
+                if !near.is_empty() && near.len() <= 40 && !near.contains('\n') {
+                    err.message = format!("{} at `{near}`", err.message);
+                }
+                err.message = format!("{} (column {})", err.message, index.column(span.start));
+            }
+            return Err(err);
+        }
+    };
+    let source = CaseSource::new(path, text, Some(root.get_ref()));
+    let ctx = Ctx {
+        file: path,
+        text,
+        index,
+    };
+    let top = Table {
+        ctx: &ctx,
+        path: "",
+        line: None,
+        table: root.get_ref(),
+    };
+    build(&top, source)
+}
+
+fn build(t: &Table<'_>, source: CaseSource) -> Res<Case> {
+    t.deny_unknown(&[
+        "title", "analysis", "time", "solver", "body", "contact", "output",
+    ])?;
+    let title = t.need("title", title)?;
+    let analysis = match t.get("analysis") {
+        Some(a) => settings::analysis(&a.node().table()?)?,
+        None => Analysis::default(),
+    };
+    let time = match t.get("time") {
+        Some(a) => settings::time(&a.node().table()?)?,
+        None => {
+            return Err(t.err_at_key(
+                "time",
+                "missing required table [time] (end = ..., steps = ... or step = ...)",
+            ))
+        }
+    };
+    let solver = match t.get("solver") {
+        Some(a) => settings::solver(&a.node().table()?)?,
+        None => SolverSettings::default(),
+    };
+
+    let body_entry = t.get("body");
+    let body_nodes = match &body_entry {
+        Some(b) => tables(&b.node(), "body")?,
+        None => Vec::new(),
+    };
+    if body_nodes.is_empty() {
+        return Err(t.err_at_key("body", "at least one [[body]] is required"));
+    }
+    let mut bodies: Vec<BodySpec> = Vec::with_capacity(body_nodes.len());
+    for b in &body_nodes {
+        let node = b.node();
+        let spec = body(&node, &source.dir)?;
+        if let Some(i) = bodies.iter().position(|o| o.name == spec.name) {
+            let name = node.table()?.req("name")?;
+            return Err(name.node().err(format!(
+                "duplicate body name \"{}\" (also body[{i}])",
+                spec.name
+            )));
+        }
+        bodies.push(spec);
+    }
+    if analysis.kind == AnalysisKind::Dynamic {
+        if let Some(i) = bodies
+            .iter()
+            .position(|b| !b.rigid && b.material.rho.is_none())
+        {
+            return Err(source.error(
+                &format!("body[{i}].material.rho"),
+                "a dynamic analysis needs the density `rho` on every non-rigid body",
+            ));
+        }
+    }
+
+    let names: Vec<&str> = bodies.iter().map(|b| b.name.as_str()).collect();
+    let contact_entry = t.get("contact");
+    let contacts = match &contact_entry {
+        Some(c) => tables(&c.node(), "contact")?
+            .iter()
+            .map(|c| contact::contact(&c.node(), &names))
+            .collect::<Res<Vec<_>>>()?,
+        None => Vec::new(),
+    };
+    let output = match t.get("output") {
+        Some(a) => settings::output(&a.node().table()?)?,
+        None => OutputSettings::default(),
+    };
+    Ok(Case {
+        title,
+        analysis,
+        time,
+        solver,
+        bodies,
+        contacts,
+        output,
+        source,
+    })
+}
+
+/// The elements of an array of tables (`[[name]]`).
+fn tables<'a>(n: &Node<'a>, name: &str) -> Res<Vec<reader::Owned<'a>>> {
+    if n.table().is_ok() {
+        return Err(n.err(format!(
+            "expected [[{name}]] (an array of tables), got a single [{name}] table"
+        )));
+    }
+    let items = n.array()?;
+    for item in &items {
+        item.node().table()?;
+    }
+    Ok(items)
+}
+
+/// `title`: non-empty and usable as a directory name.
+fn title(n: &Node<'_>) -> Res<String> {
+    let s = n.nonempty_str()?;
+    let bad = if s.contains('/') || s.contains('\\') {
+        Some("a path separator")
+    } else if s == "." || s == ".." || s.contains("..") {
+        Some("\"..\"")
+    } else if s.chars().any(char::is_control) {
+        Some("a control character")
+    } else {
+        None
+    };
+    match bad {
+        Some(what) => Err(n.err(format!(
+            "must be usable as a directory name, but contains {what}: {}",
+            n.raw()
+        ))),
+        None => Ok(s.to_owned()),
+    }
+}
+
+fn body(n: &Node<'_>, dir: &Path) -> Res<BodySpec> {
+    let t = n.table()?;
+    t.deny_unknown(&["name", "mesh", "material", "rigid", "boundary"])?;
+    let name = t.need("name", |n| {
+        let s = n.nonempty_str()?;
+        if s.contains('/') || s.chars().any(char::is_control) {
+            return Err(n.err(format!(
+                "a body name must not contain '/' or control characters, got {}",
+                n.raw()
+            )));
+        }
+        Ok(s.to_owned())
+    })?;
+    let mesh = t.need("mesh", |n| mesh::mesh(n, dir))?;
+    let material = t.need("material", material::material)?;
+    let rigid = t.opt("rigid", false, |n| n.bool())?;
+    let mut boundary = Vec::new();
+    if let Some(b) = t.get("boundary") {
+        let node = b.node();
+        for (patch, cond) in node.table()?.entries() {
+            let c = cond.node();
+            if patch.trim().is_empty() {
+                return Err(c.err("empty patch name"));
+            }
+            boundary.push((patch.to_owned(), boundary::boundary_condition(&c)?));
+        }
+    }
+    Ok(BodySpec {
+        name,
+        mesh,
+        material,
+        rigid,
+        boundary,
+    })
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,153 @@
+//! `[body.boundary.<patch>]`: one boundary condition per patch.
+
+use super::reader::{list, Node, Res};
+use super::values::{rotation, scalar_value, vector_value, Rotation, ScalarValue, VectorValue};
+
+/// A boundary condition, selected by `type`.
+#[derive(Debug, Clone, PartialEq)]
+pub enum BoundarySpec {
+    /// `"displacement"`: prescribed displacement vector.
+    Displacement {
+        /// Displacement (constant or time table).
+        value: VectorValue,
+    },
+    /// `"normal-displacement"`: scalar along the outward face normal
+    /// (negative = inward), zero shear traction.
+    NormalDisplacement {
+        /// Normal displacement (constant or time table).
+        value: ScalarValue,
+    },
+    /// `"traction"`: prescribed traction vector.
+    Traction {
+        /// Traction (constant or time table).
+        value: VectorValue,
+    },
+    /// `"pressure"`: positive presses on the face, follows the deformed normal.
+    Pressure {
+        /// Pressure (constant or time table).
+        value: ScalarValue,
+    },
+    /// `"force"`: total force on the patch, reached by correcting a uniform
+    /// patch displacement with the secant method (Algorithm 1).
+    Force {
+        /// Total force (constant or time table).
+        value: VectorValue,
+    },
+    /// `"symmetry"`: zero normal displacement and zero shear traction.
+    Symmetry,
+    /// `"empty"`: the one-cell-thick direction of a 2D case.
+    Empty,
+    /// `"wedge"`: the sides of a one-cell axisymmetric wedge.
+    Wedge,
+    /// `"rigid-motion"`: translation and/or rotation of the whole patch
+    /// (neither: fixed).
+    RigidMotion {
+        /// Translation (constant or time table).
+        translation: Option<VectorValue>,
+        /// Rotation about an axis (angle in radians, constant or time table).
+        rotation: Option<Rotation>,
+    },
+}
+
+/// The boundary condition types, as written in `type`.
+pub const BOUNDARY_TYPES: [&str; 9] = [
+    "displacement",
+    "normal-displacement",
+    "traction",
+    "pressure",
+    "force",
+    "symmetry",
+    "empty",
+    "wedge",
+    "rigid-motion",
+];
+
+#[derive(Clone, Copy)]
+enum Kind {
+    Vector(fn(VectorValue) -> BoundarySpec),
+    Scalar(fn(ScalarValue) -> BoundarySpec),
+    Plain(fn() -> BoundarySpec),
+    Rigid,
+}
+
+pub(crate) fn boundary_condition(node: &Node<'_>) -> Res<BoundarySpec> {
+    let t = node.table().map_err(|_| {
+        node.err(format!(
+            "expected a table {{ type = ..., ... }} (types: {}), got {}",
+            list(&BOUNDARY_TYPES),
+            node.raw()
+        ))
+    })?;
+    let type_node = t.req("type")?;
+    let tn = type_node.node();
+    let kind = tn.choice(
+        "boundary type",
+        &[
+            (
+                "displacement",
+                Kind::Vector(|value| BoundarySpec::Displacement { value }),
+            ),
+            (
+                "normal-displacement",
+                Kind::Scalar(|value| BoundarySpec::NormalDisplacement { value }),
+            ),
+            (
+                "traction",
+                Kind::Vector(|value| BoundarySpec::Traction { value }),
+            ),
+            (
+                "pressure",
+                Kind::Scalar(|value| BoundarySpec::Pressure { value }),
+            ),
+            ("force", Kind::Vector(|value| BoundarySpec::Force { value })),
+            ("symmetry", Kind::Plain(|| BoundarySpec::Symmetry)),
+            ("empty", Kind::Plain(|| BoundarySpec::Empty)),
+            ("wedge", Kind::Plain(|| BoundarySpec::Wedge)),
+            ("rigid-motion", Kind::Rigid),
+        ],
+    )?;
+    let type_name = tn.str()?;
+    match kind {
+        Kind::Vector(make) => {
+            t.deny_unknown(&["type", "value"])?;
+            let v = t.req("value")?;
+            let v = v.node();
+            Ok(make(vector_value(&v).map_err(|mut e| {
+                if e.key.as_deref() == Some(v.path) && !e.message.contains("type \"") {
+                    e.message = format!("{} (type \"{type_name}\" takes a vector)", e.message);
+                }
+                e
+            })?))
+        }
+        Kind::Scalar(make) => {
+            t.deny_unknown(&["type", "value"])?;
+            let v = t.req("value")?;
+            let v = v.node();
+            Ok(make(scalar_value(&v).map_err(|mut e| {
+                if e.key.as_deref() == Some(v.path) {
+                    e.message = format!("{} (type \"{type_name}\" takes a scalar)", e.message);
+                }
+                e
+            })?))
+        }
+        Kind::Plain(make) => {
+            if let Some(v) = t.get("value") {
+                return Err(v.node().err(format!("type \"{type_name}\" takes no value")));
+            }
+            t.deny_unknown(&["type"])?;
+            Ok(make())
+        }
+        Kind::Rigid => {
+            if let Some(v) = t.get("value") {
+                return Err(v.node().err(
+                    "type \"rigid-motion\" takes `translation` and/or `rotation`, not `value`",
+                ));
+            }
+            t.deny_unknown(&["type", "translation", "rotation"])?;
+            Ok(BoundarySpec::RigidMotion {
+                translation: t.maybe("translation", vector_value)?,
+                rotation: t.maybe("rotation", rotation)?,
+            })
+        }
+    }
+}

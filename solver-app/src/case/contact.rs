@@ -1,0 +1,158 @@
+//! `[[contact]]`: one master/slave patch pair each.
+
+use super::reader::{list, Node, Res};
+
+/// `contact.algorithm`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ContactAlgorithm {
+    /// `"segment-to-segment"` (default).
+    SegmentToSegment,
+    /// `"pointwise"`.
+    Pointwise,
+    /// `"pointwise-nagata"`: pointwise on Nagata-smoothed surfaces.
+    PointwiseNagata,
+    /// `"segment-to-segment-nagata"`: segment-to-segment on Nagata-smoothed surfaces.
+    SegmentToSegmentNagata,
+}
+
+/// `contact.coupling`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Coupling {
+    /// `"explicit"`: under-relaxed traction exchange (default).
+    Explicit,
+    /// `"implicit"`: contact terms in the matrix.
+    Implicit,
+}
+
+/// `contact.detection`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Detection {
+    /// `"advancing-front"` (default).
+    AdvancingFront,
+    /// `"bvh"`: bounding volume hierarchy.
+    Bvh,
+    /// `"brute-force"`: all pairs.
+    BruteForce,
+}
+
+/// A contact pair.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactSpec {
+    /// `(body, patch)` of `master = "body/patch"`; the body exists.
+    pub master: (String, String),
+    /// `(body, patch)` of `slave = "body/patch"`; the body exists.
+    pub slave: (String, String),
+    /// Contact algorithm.
+    pub algorithm: ContactAlgorithm,
+    /// Coupling of the two bodies.
+    pub coupling: Coupling,
+    /// Normal penalty scale f_n^scale of eq. 4.4a (> 0, default 1).
+    pub penalty_scale: f64,
+    /// Coulomb friction coefficient μ (>= 0, default 0).
+    pub friction: f64,
+    /// Tangential penalty scale f_t^scale of eq. 4.4b (> 0, default 1).
+    pub tangential_penalty_scale: f64,
+    /// Normal traction under-relaxation, in (0, 1] (default 0.1; explicit coupling).
+    pub relaxation_normal: f64,
+    /// Tangential traction under-relaxation, in (0, 1] (default 0.1; explicit coupling).
+    pub relaxation_tangential: f64,
+    /// Contact search.
+    pub detection: Detection,
+}
+
+fn relaxation(n: &Node<'_>) -> Res<f64> {
+    n.f64_if(|x| x > 0.0 && x <= 1.0, "satisfy 0 < relaxation <= 1")
+}
+
+/// `"body/patch"` → `(body, patch)`, the body being one of `bodies`.
+fn body_patch(n: &Node<'_>, bodies: &[&str]) -> Res<(String, String)> {
+    let s = n.str()?;
+    let Some((body, patch)) = s.split_once('/') else {
+        return Err(n.err(format!("expected \"<body>/<patch>\", got \"{s}\"")));
+    };
+    if body.is_empty() || patch.is_empty() || patch.contains('/') {
+        return Err(n.err(format!("expected \"<body>/<patch>\", got \"{s}\"")));
+    }
+    if !bodies.contains(&body) {
+        return Err(n.err(format!("unknown body \"{body}\"; bodies: {}", list(bodies))));
+    }
+    Ok((body.to_owned(), patch.to_owned()))
+}
+
+pub(crate) fn contact(node: &Node<'_>, bodies: &[&str]) -> Res<ContactSpec> {
+    let t = node.table()?;
+    t.deny_unknown(&[
+        "master",
+        "slave",
+        "algorithm",
+        "coupling",
+        "penalty_scale",
+        "friction",
+        "tangential_penalty_scale",
+        "relaxation",
+        "detection",
+    ])?;
+    let master = t.need("master", |n| body_patch(n, bodies))?;
+    let slave_node = t.req("slave")?;
+    let slave = body_patch(&slave_node.node(), bodies)?;
+    if slave == master {
+        return Err(slave_node.node().err(format!(
+            "master and slave are the same patch \"{}/{}\"",
+            slave.0, slave.1
+        )));
+    }
+    let (relaxation_normal, relaxation_tangential) = match t.get("relaxation") {
+        None => (0.1, 0.1),
+        Some(r) => {
+            let r = r.node();
+            let rt = r.table()?;
+            rt.deny_unknown(&["normal", "tangential"])?;
+            (
+                rt.opt("normal", 0.1, relaxation)?,
+                rt.opt("tangential", 0.1, relaxation)?,
+            )
+        }
+    };
+    Ok(ContactSpec {
+        master,
+        slave,
+        algorithm: t.opt("algorithm", ContactAlgorithm::SegmentToSegment, |n| {
+            n.choice(
+                "contact algorithm",
+                &[
+                    ("segment-to-segment", ContactAlgorithm::SegmentToSegment),
+                    ("pointwise", ContactAlgorithm::Pointwise),
+                    ("pointwise-nagata", ContactAlgorithm::PointwiseNagata),
+                    (
+                        "segment-to-segment-nagata",
+                        ContactAlgorithm::SegmentToSegmentNagata,
+                    ),
+                ],
+            )
+        })?,
+        coupling: t.opt("coupling", Coupling::Explicit, |n| {
+            n.choice(
+                "coupling",
+                &[
+                    ("explicit", Coupling::Explicit),
+                    ("implicit", Coupling::Implicit),
+                ],
+            )
+        })?,
+        penalty_scale: t.opt("penalty_scale", 1.0, |n| n.positive())?,
+        friction: t.opt("friction", 0.0, |n| n.f64_if(|x| x >= 0.0, "be >= 0"))?,
+        tangential_penalty_scale: t.opt("tangential_penalty_scale", 1.0, |n| n.positive())?,
+        relaxation_normal,
+        relaxation_tangential,
+        detection: t.opt("detection", Detection::AdvancingFront, |n| {
+            n.choice(
+                "detection",
+                &[
+                    ("advancing-front", Detection::AdvancingFront),
+                    ("bvh", Detection::Bvh),
+                    ("brute-force", Detection::BruteForce),
+                ],
+            )
+        })?,
+    })
+}

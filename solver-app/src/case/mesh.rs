@@ -1,0 +1,211 @@
+//! `mesh = { ... }`: a Gmsh file, an OpenFOAM polyMesh or a built-in generator.
+
+use std::path::{Path, PathBuf};
+
+use super::reader::{fmt_num, list, Node, Res, Table};
+
+/// Where a body's mesh comes from.
+#[derive(Debug, Clone, PartialEq)]
+pub enum MeshSpec {
+    /// `{ file = "x.msh", scale = 1, translate = [0,0,0] }`: Gmsh MSH 4.1.
+    Gmsh {
+        /// Resolved against the case file's directory.
+        file: PathBuf,
+        /// Coordinates are multiplied by this (> 0), then translated.
+        scale: f64,
+        /// Added after scaling.
+        translate: [f64; 3],
+    },
+    /// `{ polymesh = "dir/polyMesh", zone = "name", scale, translate }`: OpenFOAM (ascii).
+    PolyMesh {
+        /// The polyMesh directory, resolved against the case file's directory.
+        dir: PathBuf,
+        /// Only this cellZone forms the body (all cells when absent).
+        zone: Option<String>,
+        /// Coordinates are multiplied by this (> 0), then translated.
+        scale: f64,
+        /// Added after scaling.
+        translate: [f64; 3],
+    },
+    /// `{ generator = "box", min, max, cells, grading = [1,1,1] }`;
+    /// patches `xmin xmax ymin ymax zmin zmax`.
+    Box {
+        /// Lower corner.
+        min: [f64; 3],
+        /// Upper corner (> `min` in every direction).
+        max: [f64; 3],
+        /// Cells per direction (>= 1).
+        cells: [usize; 3],
+        /// Last/first cell size ratio per direction (> 0).
+        grading: [f64; 3],
+    },
+    /// `{ generator = "annulus", r_inner, r_outer, theta0 = 0, theta1 = 90, z0 = 0, z1,
+    /// cells, radial_grading = 1 }`: an annular sector about the z axis;
+    /// patches `inner outer start end zmin zmax`.
+    Annulus {
+        /// Inner radius (> 0).
+        r_inner: f64,
+        /// Outer radius (> r_inner).
+        r_outer: f64,
+        /// Start angle in radians (degrees in the file).
+        theta0: f64,
+        /// End angle in radians (degrees in the file; opening below 360°).
+        theta1: f64,
+        /// Lower z.
+        z0: f64,
+        /// Upper z (> z0).
+        z1: f64,
+        /// `[radial, circumferential, axial]` cells (>= 1).
+        cells: [usize; 3],
+        /// Last/first radial cell size ratio (> 0).
+        radial_grading: f64,
+    },
+}
+
+/// The built-in generators.
+pub const GENERATORS: [&str; 2] = ["box", "annulus"];
+
+/// Largest cell count a generator accepts (as in `fv_mesh::generators`).
+const MAX_GENERATED_CELLS: u128 = 50_000_000;
+
+fn positive3(n: &Node<'_>) -> Res<[f64; 3]> {
+    let v = n.vec3()?;
+    if let Some(d) = v.iter().position(|&x| x <= 0.0) {
+        return Err(n.err(format!(
+            "every component must be > 0, got {} in component {d}",
+            fmt_num(v[d])
+        )));
+    }
+    Ok(v)
+}
+
+fn cells(t: &Table<'_>) -> Res<[usize; 3]> {
+    let c = t.req("cells")?;
+    let n = c.node();
+    let v = n.usize3(1)?;
+    let total: u128 = v.iter().map(|&x| x as u128).product();
+    if total > MAX_GENERATED_CELLS {
+        return Err(n.err(format!(
+            "{v:?} makes {total} cells, more than the generator limit of {MAX_GENERATED_CELLS}"
+        )));
+    }
+    Ok(v)
+}
+
+pub(crate) fn mesh(node: &Node<'_>, case_dir: &Path) -> Res<MeshSpec> {
+    let t = node.table()?;
+    let forms = ["file", "polymesh", "generator"];
+    let given: Vec<&str> = forms.iter().copied().filter(|k| t.has(k)).collect();
+    match given.as_slice() {
+        ["file"] => {
+            t.deny_unknown(&["file", "scale", "translate"])?;
+            Ok(MeshSpec::Gmsh {
+                file: case_dir.join(t.need("file", |n| n.nonempty_str().map(PathBuf::from))?),
+                scale: t.opt("scale", 1.0, |n| n.positive())?,
+                translate: t.opt("translate", [0.0; 3], |n| n.vec3())?,
+            })
+        }
+        ["polymesh"] => {
+            t.deny_unknown(&["polymesh", "zone", "scale", "translate"])?;
+            Ok(MeshSpec::PolyMesh {
+                dir: case_dir.join(t.need("polymesh", |n| n.nonempty_str().map(PathBuf::from))?),
+                zone: t.maybe("zone", |n| n.nonempty_str().map(str::to_owned))?,
+                scale: t.opt("scale", 1.0, |n| n.positive())?,
+                translate: t.opt("translate", [0.0; 3], |n| n.vec3())?,
+            })
+        }
+        ["generator"] => {
+            let g = t.need("generator", |n| {
+                n.choice("mesh generator", &[("box", "box"), ("annulus", "annulus")])
+            })?;
+            if g == "box" {
+                generate_box(&t)
+            } else {
+                generate_annulus(&t)
+            }
+        }
+        [] => Err(node.err(format!(
+            "expected one of `file = \"x.msh\"`, `polymesh = \"dir/polyMesh\"` or \
+             `generator = ...` (generators: {})",
+            list(&GENERATORS)
+        ))),
+        _ => Err(node.err(format!(
+            "give only one of `file`, `polymesh` and `generator`, got {}",
+            given.join(" and ")
+        ))),
+    }
+}
+
+fn generate_box(t: &Table<'_>) -> Res<MeshSpec> {
+    t.deny_unknown(&["generator", "min", "max", "cells", "grading"])?;
+    let min = t.need("min", |n| n.vec3())?;
+    let max_node = t.req("max")?;
+    let max = max_node.node().vec3()?;
+    if let Some(d) = (0..3).find(|&d| max[d] <= min[d]) {
+        return Err(max_node.node().err(format!(
+            "max must exceed min in every direction, got max[{d}] = {} <= min[{d}] = {}",
+            fmt_num(max[d]),
+            fmt_num(min[d])
+        )));
+    }
+    Ok(MeshSpec::Box {
+        min,
+        max,
+        cells: cells(t)?,
+        grading: t.opt("grading", [1.0; 3], positive3)?,
+    })
+}
+
+fn generate_annulus(t: &Table<'_>) -> Res<MeshSpec> {
+    t.deny_unknown(&[
+        "generator",
+        "r_inner",
+        "r_outer",
+        "theta0",
+        "theta1",
+        "z0",
+        "z1",
+        "cells",
+        "radial_grading",
+    ])?;
+    let r_inner = t.need("r_inner", |n| n.positive())?;
+    let r_outer = t.need("r_outer", |n| {
+        n.f64_if(
+            |x| x > r_inner,
+            &format!("exceed r_inner = {}", fmt_num(r_inner)),
+        )
+    })?;
+    let theta0 = t.opt("theta0", 0.0, |n| n.f64())?;
+    let theta1 = t.opt("theta1", 90.0, |n| {
+        n.f64_if(
+            |x| x > theta0 && x - theta0 < 360.0 * 0.9995,
+            &format!(
+                "satisfy theta0 < theta1 < theta0 + 360 (degrees; theta0 = {}, opening below 360°)",
+                fmt_num(theta0)
+            ),
+        )
+    })?;
+    if !t.has("theta1") && (theta1 <= theta0 || theta1 - theta0 >= 360.0 * 0.9995) {
+        return Err(t.err_at_key(
+            "theta1",
+            format!(
+                "the default theta1 = 90 does not fit theta0 = {}; give theta1",
+                fmt_num(theta0)
+            ),
+        ));
+    }
+    let z0 = t.opt("z0", 0.0, |n| n.f64())?;
+    let z1 = t.need("z1", |n| {
+        n.f64_if(|x| x > z0, &format!("exceed z0 = {}", fmt_num(z0)))
+    })?;
+    Ok(MeshSpec::Annulus {
+        r_inner,
+        r_outer,
+        theta0: theta0.to_radians(),
+        theta1: theta1.to_radians(),
+        z0,
+        z1,
+        cells: cells(t)?,
+        radial_grading: t.opt("radial_grading", 1.0, |n| n.positive())?,
+    })
+}

@@ -1,0 +1,293 @@
+//! `[analysis]`, `[time]`, `[solver]` and `[output]`.
+
+use std::path::PathBuf;
+
+use super::reader::{fmt_num, Res, Table};
+
+/// `analysis.kind`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum AnalysisKind {
+    /// `"static"`: load increments, no inertia (default).
+    Static,
+    /// `"dynamic"`: with inertia; needs `rho` on every non-rigid body.
+    Dynamic,
+}
+
+/// `analysis.strain`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StrainKind {
+    /// `"small"`: small strain (default).
+    Small,
+    /// `"large"`: updated Lagrangian (eq. 2.22).
+    Large,
+}
+
+/// `[analysis]`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Analysis {
+    /// Static or dynamic.
+    pub kind: AnalysisKind,
+    /// Small or large strain.
+    pub strain: StrainKind,
+}
+
+impl Default for Analysis {
+    fn default() -> Self {
+        Self {
+            kind: AnalysisKind::Static,
+            strain: StrainKind::Small,
+        }
+    }
+}
+
+/// `[time]`: `end` and the number of equal increments.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TimeControl {
+    /// End time (> 0).
+    pub end: f64,
+    /// Number of equal increments (>= 1); `step = dt` in the file becomes `round(end/dt)`.
+    pub steps: usize,
+}
+
+impl TimeControl {
+    /// Time increment `end / steps`.
+    pub fn dt(&self) -> f64 {
+        self.end / self.steps as f64
+    }
+}
+
+/// `solver.on_nonconvergence`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum OnNonConvergence {
+    /// `"abort"`: stop with a solver failure (default).
+    Abort,
+    /// `"continue"`: warn and go on with the next increment.
+    Continue,
+}
+
+/// `solver.linear.method`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LinearMethod {
+    /// `"pcg-ic"`: preconditioned conjugate gradients with IC(0) (default).
+    PcgIc,
+    /// `"direct"`: sparse direct factorisation.
+    Direct,
+    /// `"bicgstab-ilu"`: BiCGStab with ILU(0), for nonsymmetric (implicitly coupled) systems.
+    BicgstabIlu,
+}
+
+/// `solver.linear`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LinearSettings {
+    /// Method (default pcg-ic).
+    pub method: LinearMethod,
+    /// Relative residual reduction per outer iteration, in (0, 1) (default 0.1).
+    pub tolerance: f64,
+    /// Iteration cap (>= 1, default 500).
+    pub max_iterations: usize,
+}
+
+impl Default for LinearSettings {
+    fn default() -> Self {
+        Self {
+            method: LinearMethod::PcgIc,
+            tolerance: 0.1,
+            max_iterations: 500,
+        }
+    }
+}
+
+/// `[solver]`: the segregated outer loop.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolverSettings {
+    /// Relative residual of the outer loop, in (0, 1) (default 1e-6).
+    pub tolerance: f64,
+    /// Outer iterations per increment (>= 1, default 20000).
+    pub max_outer: usize,
+    /// Displacement under-relaxation, in (0, 1] (default 1).
+    pub relaxation: f64,
+    /// What a non-converged increment does (default abort).
+    pub on_nonconvergence: OnNonConvergence,
+    /// Linear solver.
+    pub linear: LinearSettings,
+    /// Rhie–Chow coefficient α_RC (>= 0, default 0.1).
+    pub rhie_chow: f64,
+}
+
+impl Default for SolverSettings {
+    fn default() -> Self {
+        Self {
+            tolerance: 1e-6,
+            max_outer: 20000,
+            relaxation: 1.0,
+            on_nonconvergence: OnNonConvergence::Abort,
+            linear: LinearSettings::default(),
+            rhie_chow: 0.1,
+        }
+    }
+}
+
+/// `[output]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OutputSettings {
+    /// As written (relative to the working directory; default `results`);
+    /// results go to `<directory>/<title>/`.
+    pub directory: PathBuf,
+    /// Write fields every k increments (>= 1, default 1).
+    pub every: usize,
+}
+
+impl Default for OutputSettings {
+    fn default() -> Self {
+        Self {
+            directory: PathBuf::from("results"),
+            every: 1,
+        }
+    }
+}
+
+pub(crate) fn analysis(t: &Table<'_>) -> Res<Analysis> {
+    t.deny_unknown(&["kind", "strain"])?;
+    let d = Analysis::default();
+    Ok(Analysis {
+        kind: t.opt("kind", d.kind, |n| {
+            n.choice(
+                "analysis kind",
+                &[
+                    ("static", AnalysisKind::Static),
+                    ("dynamic", AnalysisKind::Dynamic),
+                ],
+            )
+        })?,
+        strain: t.opt("strain", d.strain, |n| {
+            n.choice(
+                "strain kind",
+                &[("small", StrainKind::Small), ("large", StrainKind::Large)],
+            )
+        })?,
+    })
+}
+
+/// Largest increment count accepted from `step` (exactly representable).
+const MAX_STEPS_FROM_STEP: f64 = 1e15;
+
+pub(crate) fn time(t: &Table<'_>) -> Res<TimeControl> {
+    t.deny_unknown(&["end", "steps", "step"])?;
+    let end = t.need("end", |n| n.positive())?;
+    match (t.get("steps"), t.get("step")) {
+        (Some(_), Some(step)) => Err(step.node().err("give either `steps` or `step`, not both")),
+        (None, None) => Err(t.err_at_key(
+            "steps",
+            "missing `steps` (number of increments) or `step` (increment size)",
+        )),
+        (Some(steps), None) => Ok(TimeControl {
+            end,
+            steps: steps.node().usize_min(1)?,
+        }),
+        (None, Some(step)) => {
+            let node = step.node();
+            let dt = node.positive()?;
+            let n = end / dt;
+            let r = n.round();
+            if n < 1.0 - 1e-9 {
+                return Err(node.err(format!(
+                    "step {} exceeds time.end = {}",
+                    node.raw(),
+                    fmt_num(end)
+                )));
+            }
+            if r > MAX_STEPS_FROM_STEP {
+                return Err(node.err(format!(
+                    "step {} gives end/step = {} increments, too many",
+                    node.raw(),
+                    fmt_num(n)
+                )));
+            }
+            if (n - r).abs() > 1e-9 * r {
+                return Err(node.err(format!(
+                    "end/step = {} is not an integer (within 1e-9 relative); \
+                     choose a step that divides time.end = {} or give `steps`",
+                    fmt_num(n),
+                    fmt_num(end)
+                )));
+            }
+            Ok(TimeControl {
+                end,
+                steps: r as usize,
+            })
+        }
+    }
+}
+
+fn tolerance(n: &super::reader::Node<'_>) -> Res<f64> {
+    n.f64_if(|x| x > 0.0 && x < 1.0, "satisfy 0 < tolerance < 1")
+}
+
+pub(crate) fn solver(t: &Table<'_>) -> Res<SolverSettings> {
+    t.deny_unknown(&[
+        "tolerance",
+        "max_outer",
+        "relaxation",
+        "on_nonconvergence",
+        "linear",
+        "rhie_chow",
+    ])?;
+    let d = SolverSettings::default();
+    let linear = match t.get("linear") {
+        None => d.linear,
+        Some(l) => {
+            let node = l.node();
+            linear(&node.table()?)?
+        }
+    };
+    Ok(SolverSettings {
+        tolerance: t.opt("tolerance", d.tolerance, tolerance)?,
+        max_outer: t.opt("max_outer", d.max_outer, |n| n.usize_min(1))?,
+        relaxation: t.opt("relaxation", d.relaxation, |n| {
+            n.f64_if(|x| x > 0.0 && x <= 1.0, "satisfy 0 < relaxation <= 1")
+        })?,
+        on_nonconvergence: t.opt("on_nonconvergence", d.on_nonconvergence, |n| {
+            n.choice(
+                "on_nonconvergence action",
+                &[
+                    ("abort", OnNonConvergence::Abort),
+                    ("continue", OnNonConvergence::Continue),
+                ],
+            )
+        })?,
+        linear,
+        rhie_chow: t.opt("rhie_chow", d.rhie_chow, |n| {
+            n.f64_if(|x| x >= 0.0, "be >= 0")
+        })?,
+    })
+}
+
+fn linear(t: &Table<'_>) -> Res<LinearSettings> {
+    t.deny_unknown(&["method", "tolerance", "max_iterations"])?;
+    let d = LinearSettings::default();
+    Ok(LinearSettings {
+        method: t.opt("method", d.method, |n| {
+            n.choice(
+                "linear solver method",
+                &[
+                    ("pcg-ic", LinearMethod::PcgIc),
+                    ("direct", LinearMethod::Direct),
+                    ("bicgstab-ilu", LinearMethod::BicgstabIlu),
+                ],
+            )
+        })?,
+        tolerance: t.opt("tolerance", d.tolerance, tolerance)?,
+        max_iterations: t.opt("max_iterations", d.max_iterations, |n| n.usize_min(1))?,
+    })
+}
+
+pub(crate) fn output(t: &Table<'_>) -> Res<OutputSettings> {
+    t.deny_unknown(&["directory", "every"])?;
+    let d = OutputSettings::default();
+    Ok(OutputSettings {
+        directory: t.opt("directory", d.directory, |n| {
+            n.nonempty_str().map(PathBuf::from)
+        })?,
+        every: t.opt("every", d.every, |n| n.usize_min(1))?,
+    })
+}

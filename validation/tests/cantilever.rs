@@ -1,0 +1,52 @@
+//! Cantilever in plane stress against Timoshenko beam theory.
+use validation::analytical::timoshenko_cantilever_tip;
+use validation::run_toml;
+
+#[test]
+fn plane_stress_cantilever_tip_deflection_within_2_percent() {
+    // L = 10, D = 1, thickness 0.1; end shear P = 1 as a uniform traction
+    let (l, d, t, e, nu, p) = (10.0, 1.0, 0.1, 1.0e5, 0.3, 1.0);
+    let traction = -p / (d * t);
+    let case = format!(
+        r#"
+title = "cantilever"
+[time]
+end = 1.0
+steps = 1
+[solver]
+tolerance = 1e-9
+max_outer = 100000
+[[body]]
+name = "beam"
+mesh = {{ generator = "box", min = [0, -0.5, 0], max = [{l}, 0.5, {t}], cells = [100, 10, 1] }}
+material = {{ model = "linear-elastic", E = {e}, nu = {nu}, plane_stress = true }}
+[body.boundary.xmin]
+type = "displacement"
+value = [0, 0, 0]
+[body.boundary.xmax]
+type = "traction"
+value = [0, {traction}, 0]
+[body.boundary.zmin]
+type = "empty"
+[body.boundary.zmax]
+type = "empty"
+"#
+    );
+    let out = run_toml(&case, std::path::Path::new("."));
+    assert!(out.converged, "{:?}", out.failure);
+    let b = &out.bodies[0];
+    // tip deflection: mean u_y over the end face
+    let pi = b.mesh.patch_index("xmax").unwrap();
+    let ni = b.mesh.n_internal_faces();
+    let faces = b.mesh.patches[pi].faces();
+    let n = faces.len() as f64;
+    let tip: f64 = faces.map(|f| b.momentum.u_b[f - ni].y).sum::<f64>() / n;
+    let reference = -timoshenko_cantilever_tip(p, l, d, t, e, nu);
+    let rel = (tip - reference).abs() / reference.abs();
+    eprintln!(
+        "cantilever: tip deflection {tip:.6e}, Timoshenko {reference:.6e}, relative difference {:.3} %, {} outer iterations",
+        rel * 100.0,
+        out.summary.outer_iterations
+    );
+    assert!(rel < 0.02);
+}

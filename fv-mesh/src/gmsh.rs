@@ -548,7 +548,8 @@ fn convert(
         return Err(unsupported(
             "the mesh has no volume elements (tetrahedra, hexahedra, prisms, pyramids): 2D meshes are not \
              supported; mesh the volume (gmsh -3), for a plane problem extrude the surface one cell thick \
-             (Extrude {..} { Surface{..}; Layers{1}; Recombine; })"
+             (Extrude {..} { Surface{..}; Layers{1}; Recombine; }). If the .geo defines physical \
+             groups, Gmsh saves only the elements in them: add a Physical Volume or set Mesh.SaveAll = 1"
                 .into(),
         ));
     }

@@ -446,7 +446,12 @@ fn convert(
             Some(map) => map.iter().map(|(&t, &i)| (t, i)).collect(),
             // dense tags, in file order (only when the header could not be patched)
             None => (0..block.nodes.len())
-                .map(|i| (nodes.min_node_tag + (coords.len() + i) as u64, i))
+                .map(|i| {
+                    (
+                        nodes.min_node_tag.wrapping_add((coords.len() + i) as u64),
+                        i,
+                    )
+                })
                 .collect(),
         };
         if tags.len() != block.nodes.len() {

@@ -52,6 +52,10 @@ pub struct SegregatedSolver {
     rhs: Vec<f64>,
     x: Vec<f64>,
     delta: Vec<Vector>,
+    /// Displacement at the start of the increment (global numbering).
+    u_start: Vec<Vector>,
+    /// Largest bounding-box diagonal of the bodies.
+    length_scale: f64,
     n: usize,
     params: MomentumParams,
     relaxation: f64,
@@ -120,6 +124,16 @@ impl SegregatedSolver {
             n = n.max(b.offset + b.mesh.n_cells);
         }
         let (matrix, slots) = CsrMatrix::from_faces(n, &owner, &neighbour);
+        let mut length_scale = f64::MIN_POSITIVE;
+        for b in bodies {
+            let mut lo = Vector::repeat(f64::INFINITY);
+            let mut hi = Vector::repeat(f64::NEG_INFINITY);
+            for p in &b.mesh.points {
+                lo = lo.inf(p);
+                hi = hi.sup(p);
+            }
+            length_scale = length_scale.max((hi - lo).norm());
+        }
         SegregatedSolver {
             matrices: vec![matrix],
             component_matrix: [Some(0), Some(0), Some(0)],
@@ -128,6 +142,8 @@ impl SegregatedSolver {
             rhs: vec![0.0; n],
             x: vec![0.0; n],
             delta: vec![Vector::zeros(); n],
+            u_start: vec![Vector::zeros(); n],
+            length_scale,
             n,
             params: MomentumParams {
                 rhie_chow: settings.rhie_chow,
@@ -224,61 +240,90 @@ impl SegregatedSolver {
         Ok(())
     }
 
+    /// Records the displacement at the start of an increment (the reference
+    /// of the relative residual).
+    pub fn begin_increment(&mut self, bodies: &[Body]) {
+        for b in bodies.iter().filter(|b| !b.rigid) {
+            self.u_start[b.offset..b.offset + b.mesh.n_cells].copy_from_slice(&b.momentum.u);
+        }
+    }
+
+    /// One outer iteration (thesis §3.3 i–iv): boundary values, gradient,
+    /// stress and force residual of every body, one linear solve per
+    /// component, under-relaxed update. Returns the relative residual
+    /// ‖δ‖/‖u − u_start‖ and the linear iterations used. Allocates nothing.
+    pub fn outer_iteration(&mut self, bodies: &mut [Body]) -> Result<(f64, usize), SolveError> {
+        let mut linear_iterations = 0;
+        for b in bodies.iter_mut().filter(|b| !b.rigid) {
+            let m = &mut b.momentum;
+            m.update_boundary_values(&b.mesh, &b.geom, b.material.as_ref());
+            m.update_gradient_and_stress(&b.mesh, b.material.as_ref());
+            m.compute_residual(&b.mesh, &b.geom, b.material.as_ref(), &self.params);
+        }
+        for c in 0..3 {
+            let Some(mi) = self.component_matrix[c] else {
+                self.delta.iter_mut().for_each(|d| d[c] = 0.0);
+                continue;
+            };
+            for b in bodies.iter().filter(|b| !b.rigid) {
+                for (i, r) in b.momentum.residual.iter().enumerate() {
+                    self.rhs[b.offset + i] = r[c];
+                }
+            }
+            self.x.iter_mut().for_each(|x| *x = 0.0);
+            let si = self.solvers[mi].solve(&self.matrices[mi], &self.rhs, &mut self.x)?;
+            linear_iterations += si.iterations;
+            for (d, &x) in self.delta.iter_mut().zip(&self.x) {
+                d[c] = x;
+            }
+        }
+        let mut norm_delta = 0.0;
+        let mut norm_incr = 0.0;
+        for b in bodies.iter_mut().filter(|b| !b.rigid) {
+            let off = b.offset;
+            for (i, u) in b.momentum.u.iter_mut().enumerate() {
+                let d = self.delta[off + i] * self.relaxation;
+                *u += d;
+                norm_delta += d.norm_squared();
+                norm_incr += (*u - self.u_start[off + i]).norm_squared();
+            }
+        }
+        if !norm_delta.is_finite() {
+            return Err(SolveError::Diverged(0));
+        }
+        // floor: nothing moves (an unloaded increment) counts as converged
+        let floor = 1e-14 * self.length_scale * (self.n as f64).sqrt();
+        Ok((norm_delta.sqrt() / norm_incr.sqrt().max(floor), linear_iterations))
+    }
+
+    /// Refreshes boundary values, gradient, stress, residual and boundary
+    /// forces from the current displacement (for output after convergence).
+    pub fn update_fields(&self, bodies: &mut [Body]) {
+        for b in bodies.iter_mut().filter(|b| !b.rigid) {
+            let m = &mut b.momentum;
+            m.update_boundary_values(&b.mesh, &b.geom, b.material.as_ref());
+            m.update_gradient_and_stress(&b.mesh, b.material.as_ref());
+            m.compute_residual(&b.mesh, &b.geom, b.material.as_ref(), &self.params);
+        }
+    }
+
     /// Solves one load increment by outer iterations; on entry the bodies
     /// hold the converged fields of the previous increment and the boundary
-    /// values of this one.
+    /// values of this one. On exit the fields are consistent with the final
+    /// displacement.
     pub fn solve_increment(
         &mut self,
         bodies: &mut [Body],
         mut on_iteration: impl FnMut(usize, f64),
     ) -> Result<IncrementInfo, SolveError> {
-        let u_old: Vec<Vec<Vector>> = bodies.iter().map(|b| b.momentum.u.clone()).collect();
+        self.begin_increment(bodies);
         let mut info = IncrementInfo::default();
-        let scale = bodies
-            .iter()
-            .flat_map(|b| b.mesh.points.iter())
-            .fold(0.0f64, |a, p| a.max(p.norm()))
-            .max(1e-300);
         for outer in 1..=self.max_outer {
-            for b in bodies.iter_mut().filter(|b| !b.rigid) {
-                let m = &mut b.momentum;
-                m.update_boundary_values(&b.mesh, &b.geom, b.material.as_ref());
-                m.update_gradient_and_stress(&b.mesh, b.material.as_ref());
-                m.compute_residual(&b.mesh, &b.geom, b.material.as_ref(), &self.params);
-            }
-            for c in 0..3 {
-                let Some(mi) = self.component_matrix[c] else {
-                    self.delta.iter_mut().for_each(|d| d[c] = 0.0);
-                    continue;
-                };
-                for b in bodies.iter().filter(|b| !b.rigid) {
-                    for (i, r) in b.momentum.residual.iter().enumerate() {
-                        self.rhs[b.offset + i] = r[c];
-                    }
-                }
-                self.x.iter_mut().for_each(|x| *x = 0.0);
-                let si = self.solvers[mi].solve(&self.matrices[mi], &self.rhs, &mut self.x)?;
-                info.linear_iterations += si.iterations;
-                for (d, &x) in self.delta.iter_mut().zip(&self.x) {
-                    d[c] = x;
-                }
-            }
-            let mut norm_delta = 0.0;
-            let mut norm_incr = 0.0;
-            for (b, old) in bodies.iter_mut().zip(&u_old).filter(|(b, _)| !b.rigid) {
-                let off = b.offset;
-                for (i, u) in b.momentum.u.iter_mut().enumerate() {
-                    let d = self.delta[off + i] * self.relaxation;
-                    *u += d;
-                    norm_delta += d.norm_squared();
-                    norm_incr += (*u - old[i]).norm_squared();
-                }
-            }
-            if !norm_delta.is_finite() {
-                return Err(SolveError::Diverged(outer));
-            }
-            let floor = 1e-14 * scale * (self.n as f64).sqrt();
-            let residual = norm_delta.sqrt() / norm_incr.sqrt().max(floor);
+            let (residual, linear) = self.outer_iteration(bodies).map_err(|e| match e {
+                SolveError::Diverged(_) => SolveError::Diverged(outer),
+                e => e,
+            })?;
+            info.linear_iterations += linear;
             info.outer_iterations = outer;
             info.residual = residual;
             on_iteration(outer, residual);
@@ -287,13 +332,7 @@ impl SegregatedSolver {
                 break;
             }
         }
-        // fields consistent with the final displacement
-        for b in bodies.iter_mut().filter(|b| !b.rigid) {
-            let m = &mut b.momentum;
-            m.update_boundary_values(&b.mesh, &b.geom, b.material.as_ref());
-            m.update_gradient_and_stress(&b.mesh, b.material.as_ref());
-            m.compute_residual(&b.mesh, &b.geom, b.material.as_ref(), &self.params);
-        }
+        self.update_fields(bodies);
         Ok(info)
     }
 }

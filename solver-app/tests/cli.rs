@@ -158,3 +158,54 @@ fn unconstrained_body_is_an_input_error() {
         .replace("type = \"displacement\"\nvalue = { table", "type = \"traction\"\nvalue = { table");
     expect_input_error(dir.path(), free.as_bytes(), &["not held"]);
 }
+
+#[test]
+fn check_reports_a_benchmark_polymesh() {
+    let shared = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/benchmarks");
+    let archive = shared.join("twisting-hemisphere/mesh/polyMesh_coarse.tar.xz");
+    if !archive.is_file() {
+        eprintln!("skipped: ../shared not found ({})", archive.display());
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let status = Command::new("tar")
+        .arg("-xJf")
+        .arg(&archive)
+        .arg("-C")
+        .arg(dir.path())
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let case = r#"title = "hemisphere-mesh"
+[time]
+end = 1.0
+steps = 1
+[[body]]
+name = "sphere"
+mesh = { polymesh = "polyMesh", zone = "sphere" }
+material = { model = "linear-elastic", E = 10.0, nu = 0.3 }
+[body.boundary.sphere-displacement]
+type = "displacement"
+value = [0, 0, -0.1]
+[[body]]
+name = "block"
+mesh = { polymesh = "polyMesh", zone = "block" }
+material = { model = "linear-elastic", E = 50.0, nu = 0.3 }
+[body.boundary.block-fixed]
+type = "displacement"
+value = [0, 0, 0]
+"#;
+    let p = write(dir.path(), "case.toml", case.as_bytes());
+    let (code, out, err) = fvc(&["check", p.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    eprintln!("{out}");
+    assert!(out.contains("body 'sphere': 1620 cells"), "{out}");
+    assert!(out.contains("body 'block': 729 cells"), "{out}");
+    assert!(out.contains("sphere-contact"));
+    // an unknown zone lists the valid ones
+    let bad = case.replace("zone = \"block\"", "zone = \"plate\"");
+    let p = write(dir.path(), "case.toml", bad.as_bytes());
+    let (code, _, err) = fvc(&["check", p.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(err.contains("plate") && err.contains("sphere") && err.contains("block"), "{err}");
+}

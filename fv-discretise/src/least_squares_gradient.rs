@@ -133,12 +133,19 @@ mod tests {
     use fv_mesh::generators::box_mesh;
 
     fn perturbed_box(n: usize, amp: f64, seed: u64) -> PolyMesh {
-        let mut m = box_mesh(Vector::zeros(), Vector::new(1.0, 1.0, 1.0), [n, n, n], [1.0; 3])
-            .unwrap();
+        let mut m = box_mesh(
+            Vector::zeros(),
+            Vector::new(1.0, 1.0, 1.0),
+            [n, n, n],
+            [1.0; 3],
+        )
+        .unwrap();
         let h = 1.0 / n as f64;
         let mut s = seed;
         let mut rnd = || {
-            s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             ((s >> 11) as f64 / (1u64 << 53) as f64) - 0.5
         };
         for p in m.points.iter_mut() {
@@ -169,7 +176,13 @@ mod tests {
 
     #[test]
     fn one_cell_thick_mesh_has_zero_out_of_plane_gradient() {
-        let m = box_mesh(Vector::zeros(), Vector::new(1.0, 1.0, 0.1), [5, 5, 1], [1.0; 3]).unwrap();
+        let m = box_mesh(
+            Vector::zeros(),
+            Vector::new(1.0, 1.0, 0.1),
+            [5, 5, 1],
+            [1.0; 3],
+        )
+        .unwrap();
         let g = MeshGeometry::new(&m).unwrap();
         let passive: Vec<bool> = m.patches.iter().map(|p| p.name.starts_with('z')).collect();
         let op = LeastSquaresGradient::new(&m, &g, &passive);

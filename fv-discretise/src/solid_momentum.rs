@@ -143,9 +143,7 @@ impl SolidMomentum {
                     PatchCondition::Symmetry | PatchCondition::NormalDisplacement(_) => {
                         a * n[c] * n[c]
                     }
-                    PatchCondition::Wedge(r) => {
-                        0.5 * a * (1.0 - r[f - p.start][(c, c)]).abs()
-                    }
+                    PatchCondition::Wedge(r) => 0.5 * a * (1.0 - r[f - p.start][(c, c)]).abs(),
                     PatchCondition::Traction(_) | PatchCondition::Empty => 0.0,
                 };
             }

@@ -210,7 +210,14 @@ pub fn box_tet_mesh(min: Vector, max: Vector, cells: [usize; 3]) -> Result<PolyM
     let hex = box_mesh(min, max, cells, [1.0; 3])?;
     let [nx, ny, _] = cells;
     let idx = |i: usize, j: usize, k: usize| (i + (nx + 1) * (j + (ny + 1) * k)) as u32;
-    let perms = [[0, 1, 2], [0, 2, 1], [1, 0, 2], [1, 2, 0], [2, 0, 1], [2, 1, 0]];
+    let perms = [
+        [0, 1, 2],
+        [0, 2, 1],
+        [1, 0, 2],
+        [1, 2, 0],
+        [2, 0, 1],
+        [2, 1, 0],
+    ];
     let mut shapes = Vec::with_capacity(hex.n_cells * 6);
     for k in 0..cells[2] {
         for j in 0..cells[1] {
@@ -244,7 +251,9 @@ fn classify_box_boundary(mesh: &mut PolyMesh, min: Vector, max: Vector) -> Resul
     let mut groups: Vec<Vec<usize>> = vec![Vec::new(); 6];
     for f in ni..mesh.n_faces() {
         let pts = mesh.face(f);
-        let c = pts.iter().fold(Vector::zeros(), |a, &p| a + mesh.points[p as usize])
+        let c = pts
+            .iter()
+            .fold(Vector::zeros(), |a, &p| a + mesh.points[p as usize])
             / pts.len() as f64;
         let g = (0..6).find(|&g| {
             let d = g / 2;
@@ -253,7 +262,11 @@ fn classify_box_boundary(mesh: &mut PolyMesh, min: Vector, max: Vector) -> Resul
         });
         match g {
             Some(g) => groups[g].push(f),
-            None => return Err(MeshError::invalid(format!("boundary face {f} is not on the box"))),
+            None => {
+                return Err(MeshError::invalid(format!(
+                    "boundary face {f} is not on the box"
+                )))
+            }
         }
     }
     let mut faces = Vec::with_capacity(mesh.n_faces());

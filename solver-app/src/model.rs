@@ -33,15 +33,18 @@ pub struct Body {
 impl Body {
     /// Patches whose reaction force is reported (displacement-like conditions).
     pub fn reported_patches(&self) -> impl Iterator<Item = usize> + '_ {
-        self.patch_specs.iter().enumerate().filter_map(|(i, s)| match s {
-            Some(
-                BoundarySpec::Displacement { .. }
-                | BoundarySpec::NormalDisplacement { .. }
-                | BoundarySpec::Force { .. }
-                | BoundarySpec::RigidMotion { .. },
-            ) => Some(i),
-            _ => None,
-        })
+        self.patch_specs
+            .iter()
+            .enumerate()
+            .filter_map(|(i, s)| match s {
+                Some(
+                    BoundarySpec::Displacement { .. }
+                    | BoundarySpec::NormalDisplacement { .. }
+                    | BoundarySpec::Force { .. }
+                    | BoundarySpec::RigidMotion { .. },
+                ) => Some(i),
+                _ => None,
+            })
     }
 
     /// Sets the per-face values of every condition at time `t` (eq. 3.19, 3.21).
@@ -197,7 +200,10 @@ fn build_body(
         .collect();
     let rotations = wedge_rotations(&mesh, &geom, &wedge_patches).map_err(|e| {
         src.error(
-            &format!("body[{bi}].boundary.{}", mesh.patches[wedge_patches[0]].name),
+            &format!(
+                "body[{bi}].boundary.{}",
+                mesh.patches[wedge_patches[0]].name
+            ),
             e.to_string(),
         )
     })?;
@@ -208,7 +214,9 @@ fn build_body(
             None
             | Some(BoundarySpec::Traction { .. })
             | Some(BoundarySpec::Pressure { .. })
-            | Some(BoundarySpec::Force { .. }) => PatchCondition::Traction(vec![Vector::zeros(); n]),
+            | Some(BoundarySpec::Force { .. }) => {
+                PatchCondition::Traction(vec![Vector::zeros(); n])
+            }
             Some(BoundarySpec::Displacement { .. }) | Some(BoundarySpec::RigidMotion { .. }) => {
                 PatchCondition::Displacement(vec![Vector::zeros(); n])
             }

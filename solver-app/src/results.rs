@@ -154,7 +154,10 @@ pub fn write_summary(dir: &Path, s: &Summary, bodies: &[Body]) -> std::io::Resul
     }
     let path = dir.join("summary.json");
     let tmp = dir.join("summary.json.tmp");
-    std::fs::write(&tmp, serde_json::to_string_pretty(&v).unwrap_or_default() + "\n")?;
+    std::fs::write(
+        &tmp,
+        serde_json::to_string_pretty(&v).unwrap_or_default() + "\n",
+    )?;
     std::fs::rename(&tmp, &path)?;
     Ok(path)
 }

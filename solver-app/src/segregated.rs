@@ -79,7 +79,9 @@ fn make_solver(s: &LinearSettings, n: usize) -> Box<dyn LinearSolver + Send> {
                 max_iterations: s.max_iterations,
             },
         )),
-        LinearMethod::Direct => Box::new(fv_discretise::DirectSolver::new(fv_discretise::DirectMethod::Cholesky)),
+        LinearMethod::Direct => Box::new(fv_discretise::DirectSolver::new(
+            fv_discretise::DirectMethod::Cholesky,
+        )),
     }
 }
 
@@ -199,8 +201,7 @@ impl SegregatedSolver {
             for b in bodies.iter().filter(|b| !b.rigid) {
                 let slice = &mut d[b.offset..b.offset + b.mesh.n_cells];
                 let before: f64 = slice.iter().sum();
-                b.momentum
-                    .add_boundary_diagonal(&b.mesh, &b.geom, c, slice);
+                b.momentum.add_boundary_diagonal(&b.mesh, &b.geom, c, slice);
                 let after: f64 = slice.iter().sum();
                 if !(after > before * (1.0 + 1e-12)) {
                     return Err(SolveError::Unconstrained {
@@ -293,7 +294,10 @@ impl SegregatedSolver {
         }
         // floor: nothing moves (an unloaded increment) counts as converged
         let floor = 1e-14 * self.length_scale * (self.n as f64).sqrt();
-        Ok((norm_delta.sqrt() / norm_incr.sqrt().max(floor), linear_iterations))
+        Ok((
+            norm_delta.sqrt() / norm_incr.sqrt().max(floor),
+            linear_iterations,
+        ))
     }
 
     /// Refreshes boundary values, gradient, stress, residual and boundary

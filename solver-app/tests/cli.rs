@@ -43,7 +43,13 @@ fn write(dir: &Path, name: &str, bytes: &[u8]) -> PathBuf {
 fn expect_input_error(dir: &Path, case: &[u8], expected: &[&str]) {
     let p = write(dir, "case.toml", case);
     let outdir = dir.join("out");
-    let (code, _, err) = fvc(&["run", p.to_str().unwrap(), "--output", outdir.to_str().unwrap(), "--quiet"]);
+    let (code, _, err) = fvc(&[
+        "run",
+        p.to_str().unwrap(),
+        "--output",
+        outdir.to_str().unwrap(),
+        "--quiet",
+    ]);
     assert_eq!(code, 2, "exit code for {expected:?}; stderr: {err}");
     for e in expected {
         assert!(err.contains(e), "stderr lacks {e:?}:\n{err}");
@@ -56,7 +62,13 @@ fn good_case_runs_and_writes_results() {
     let dir = tempfile::tempdir().unwrap();
     let p = write(dir.path(), "case.toml", GOOD.as_bytes());
     let outdir = dir.path().join("out");
-    let (code, _, err) = fvc(&["run", p.to_str().unwrap(), "--output", outdir.to_str().unwrap(), "--quiet"]);
+    let (code, _, err) = fvc(&[
+        "run",
+        p.to_str().unwrap(),
+        "--output",
+        outdir.to_str().unwrap(),
+        "--quiet",
+    ]);
     assert_eq!(code, 0, "{err}");
     let res = outdir.join("block");
     let summary = std::fs::read_to_string(res.join("summary.json")).unwrap();
@@ -65,17 +77,26 @@ fn good_case_runs_and_writes_results() {
     assert_eq!(v["increments"], 2);
     // uniaxial compression of a free-sided block: F = E ε A (lateral faces free,
     // but ends held: reaction larger than E ε A, smaller than the oedometric value)
-    let fy = v["patches"]["block/ymax"]["reaction_force"][1].as_f64().unwrap();
+    let fy = v["patches"]["block/ymax"]["reaction_force"][1]
+        .as_f64()
+        .unwrap();
     let e_eps_a = 200.0 * 0.01;
     let oedometric = e_eps_a * (1.0 - 0.3) / ((1.0 + 0.3) * (1.0 - 0.6));
     assert!(fy < -e_eps_a && fy > -oedometric, "reaction {fy}");
-    let fy0 = v["patches"]["block/ymin"]["reaction_force"][1].as_f64().unwrap();
-    assert!((fy + fy0).abs() < 1e-6 * fy.abs(), "equilibrium {fy} vs {fy0}");
+    let fy0 = v["patches"]["block/ymin"]["reaction_force"][1]
+        .as_f64()
+        .unwrap();
+    assert!(
+        (fy + fy0).abs() < 1e-6 * fy.abs(),
+        "equilibrium {fy} vs {fy0}"
+    );
     let hist = std::fs::read_to_string(res.join("history.csv")).unwrap();
     let lines: Vec<&str> = hist.lines().collect();
     assert_eq!(lines.len(), 3);
     assert!(lines[0].starts_with("time,outer_iterations,residual,block/ymin:Fx"));
-    assert!(std::fs::read_to_string(res.join("log.txt")).unwrap().contains("increment 2/2"));
+    assert!(std::fs::read_to_string(res.join("log.txt"))
+        .unwrap()
+        .contains("increment 2/2"));
 }
 
 #[test]
@@ -84,7 +105,14 @@ fn check_prints_the_mesh_report() {
     let p = write(dir.path(), "case.toml", GOOD.as_bytes());
     let (code, out, err) = fvc(&["check", p.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");
-    for s in ["64 cells", "non-orthogonality", "skewness", "ymax", "displacement", "traction-free"] {
+    for s in [
+        "64 cells",
+        "non-orthogonality",
+        "skewness",
+        "ymax",
+        "displacement",
+        "traction-free",
+    ] {
         assert!(out.contains(s), "{s} missing in:\n{out}");
     }
 }
@@ -94,27 +122,60 @@ fn ten_malformed_inputs_exit_2_with_precise_messages() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     // 1 syntax error
-    expect_input_error(d, GOOD.replace("end = 1.0", "end = 1.0 =").as_bytes(), &["case.toml:3"]);
+    expect_input_error(
+        d,
+        GOOD.replace("end = 1.0", "end = 1.0 =").as_bytes(),
+        &["case.toml:3"],
+    );
     // 2 unknown key
-    expect_input_error(d, GOOD.replace("tolerance = 1e-6", "tolerence = 1e-6").as_bytes(), &["case.toml:6", "tolerence"]);
+    expect_input_error(
+        d,
+        GOOD.replace("tolerance = 1e-6", "tolerence = 1e-6")
+            .as_bytes(),
+        &["case.toml:6", "tolerence"],
+    );
     // 3 unknown patch
-    expect_input_error(d, GOOD.replace("[body.boundary.ymin]", "[body.boundary.bottom]").as_bytes(), &["case.toml:11", "bottom", "ymin"]);
+    expect_input_error(
+        d,
+        GOOD.replace("[body.boundary.ymin]", "[body.boundary.bottom]")
+            .as_bytes(),
+        &["case.toml:11", "bottom", "ymin"],
+    );
     // 4 nu >= 0.5
-    expect_input_error(d, GOOD.replace("nu = 0.3", "nu = 0.5").as_bytes(), &["case.toml:10", "nu"]);
+    expect_input_error(
+        d,
+        GOOD.replace("nu = 0.3", "nu = 0.5").as_bytes(),
+        &["case.toml:10", "nu"],
+    );
     // 5 E <= 0
-    expect_input_error(d, GOOD.replace("E = 200.0", "E = 0.0").as_bytes(), &["case.toml:10", "E"]);
+    expect_input_error(
+        d,
+        GOOD.replace("E = 200.0", "E = 0.0").as_bytes(),
+        &["case.toml:10", "E"],
+    );
     // 6 missing mesh file
     expect_input_error(
         d,
-        GOOD.replace(r#"{ generator = "box", min = [0, 0, 0], max = [1, 1, 1], cells = [4, 4, 4] }"#, r#"{ file = "nowhere.msh" }"#).as_bytes(),
+        GOOD.replace(
+            r#"{ generator = "box", min = [0, 0, 0], max = [1, 1, 1], cells = [4, 4, 4] }"#,
+            r#"{ file = "nowhere.msh" }"#,
+        )
+        .as_bytes(),
         &["nowhere.msh"],
     );
     // 7 truncated mesh file
-    let msh = std::fs::read(Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/quarter-annulus/annulus.msh")).unwrap();
+    let msh = std::fs::read(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/quarter-annulus/annulus.msh"),
+    )
+    .unwrap();
     write(d, "cut.msh", &msh[..msh.len() / 2]);
     expect_input_error(
         d,
-        GOOD.replace(r#"{ generator = "box", min = [0, 0, 0], max = [1, 1, 1], cells = [4, 4, 4] }"#, r#"{ file = "cut.msh" }"#).as_bytes(),
+        GOOD.replace(
+            r#"{ generator = "box", min = [0, 0, 0], max = [1, 1, 1], cells = [4, 4, 4] }"#,
+            r#"{ file = "cut.msh" }"#,
+        )
+        .as_bytes(),
         &["cut.msh"],
     );
     // 8 unknown body in a contact
@@ -124,7 +185,11 @@ fn ten_malformed_inputs_exit_2_with_precise_messages() {
         &["case.toml:19", "plate"],
     );
     // 9 negative steps
-    expect_input_error(d, GOOD.replace("steps = 2", "steps = -2").as_bytes(), &["case.toml:4", "steps"]);
+    expect_input_error(
+        d,
+        GOOD.replace("steps = 2", "steps = -2").as_bytes(),
+        &["case.toml:4", "steps"],
+    );
     // 10 non-UTF-8 file
     let mut bytes = GOOD.as_bytes().to_vec();
     bytes.splice(0..0, [b'#', 0xff, 0xfe, b'\n']);
@@ -148,14 +213,25 @@ material = { model = "linear-elastic", E = 200.0, nu = 0.3 }
 master = "plate/ymin"
 slave = "block/ymax"
 "#;
-    expect_input_error(dir.path(), two.as_bytes(), &["contact", "not available yet"]);
+    expect_input_error(
+        dir.path(),
+        two.as_bytes(),
+        &["contact", "not available yet"],
+    );
 }
 
 #[test]
 fn unconstrained_body_is_an_input_error() {
     let dir = tempfile::tempdir().unwrap();
-    let free = GOOD.replace("type = \"displacement\"\nvalue = [0, 0, 0]", "type = \"traction\"\nvalue = [0, 0, 0]")
-        .replace("type = \"displacement\"\nvalue = { table", "type = \"traction\"\nvalue = { table");
+    let free = GOOD
+        .replace(
+            "type = \"displacement\"\nvalue = [0, 0, 0]",
+            "type = \"traction\"\nvalue = [0, 0, 0]",
+        )
+        .replace(
+            "type = \"displacement\"\nvalue = { table",
+            "type = \"traction\"\nvalue = { table",
+        );
     expect_input_error(dir.path(), free.as_bytes(), &["not held"]);
 }
 
@@ -207,5 +283,8 @@ value = [0, 0, 0]
     let p = write(dir.path(), "case.toml", bad.as_bytes());
     let (code, _, err) = fvc(&["check", p.to_str().unwrap()]);
     assert_eq!(code, 2);
-    assert!(err.contains("plate") && err.contains("sphere") && err.contains("block"), "{err}");
+    assert!(
+        err.contains("plate") && err.contains("sphere") && err.contains("block"),
+        "{err}"
+    );
 }

@@ -31,7 +31,13 @@ pub fn run_toml(text: &str, dir: &Path) -> RunOutcome {
 
 /// Moves every point not on the boundary of the box `[0, size]` by a
 /// seeded pseudo-random offset of at most `amplitude·h` per direction.
-pub fn distort_interior(mesh: &mut fv_mesh::PolyMesh, size: [f64; 3], h: f64, amplitude: f64, seed: u64) {
+pub fn distort_interior(
+    mesh: &mut fv_mesh::PolyMesh,
+    size: [f64; 3],
+    h: f64,
+    amplitude: f64,
+    seed: u64,
+) {
     let mut s = seed;
     let mut rnd = || {
         s = s

@@ -63,6 +63,8 @@ fn lame_gmsh_quarter_annulus_example_within_2_percent() {
     let out = run_toml(&case, &dir);
     assert!(out.converged, "{:?}", out.failure);
     let (err_rr, err_tt) = max_polar_stress_error(&out, 1.0, 2.0);
-    eprintln!("Lamé, Gmsh quarter annulus: max |Δσ_rr|/p = {err_rr:.4}, max |Δσ_θθ|/p = {err_tt:.4}");
+    eprintln!(
+        "Lamé, Gmsh quarter annulus: max |Δσ_rr|/p = {err_rr:.4}, max |Δσ_θθ|/p = {err_tt:.4}"
+    );
     assert!(err_rr < 0.02 && err_tt < 0.02);
 }

@@ -107,12 +107,20 @@ value = [0, 0, 0]
     }
     b.momentum.body_force = b.geom.cell_centres.iter().map(body_force).collect();
     let mut solver = SegregatedSolver::new(&bodies, &case.solver);
-    solver.assemble_and_factorise(&bodies, &case.solver.linear).unwrap();
+    solver
+        .assemble_and_factorise(&bodies, &case.solver.linear)
+        .unwrap();
     let info = solver.solve_increment(&mut bodies, |_, _| {}).unwrap();
     assert!(info.converged, "not converged: {info:?}");
     let b = &bodies[0];
     let (mut num, mut den) = (0.0, 0.0);
-    for ((c, u), v) in b.geom.cell_centres.iter().zip(&b.momentum.u).zip(&b.geom.cell_volumes) {
+    for ((c, u), v) in b
+        .geom
+        .cell_centres
+        .iter()
+        .zip(&b.momentum.u)
+        .zip(&b.geom.cell_volumes)
+    {
         let ue = exact(c);
         num += (u - ue).norm_squared() * v;
         den += ue.norm_squared() * v;
@@ -133,7 +141,12 @@ fn check_order(name: &str, errors: &[(usize, f64, usize)]) {
             w[0].2,
             w[1].2
         );
-        assert!(ratio >= 3.5, "{name}: error ratio {ratio:.2} < 3.5 between n = {} and {}", w[0].0, w[1].0);
+        assert!(
+            ratio >= 3.5,
+            "{name}: error ratio {ratio:.2} < 3.5 between n = {} and {}",
+            w[0].0,
+            w[1].0
+        );
     }
 }
 
@@ -155,7 +168,10 @@ fn second_order_on_distorted_hexahedra() {
             *p += Vector::new(0.06 * s, -0.05 * s, 0.04 * s);
         }
         let q = fv_mesh::MeshQuality::new(&mesh, &fv_mesh::MeshGeometry::new(&mesh).unwrap());
-        eprintln!("n = {n}: max non-orthogonality {:.1}°", q.max_non_orthogonality);
+        eprintln!(
+            "n = {n}: max non-orthogonality {:.1}°",
+            q.max_non_orthogonality
+        );
         let (err, it) = solve(mesh);
         errors.push((n, err, it));
     }

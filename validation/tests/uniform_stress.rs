@@ -41,10 +41,15 @@ value = [10.0, 0.0, 0.0]
     distort_interior(&mut mesh, [1.0; 3], 1.0 / 6.0, 0.3, 42);
     let mut bodies = build_bodies(&case, vec![mesh]).unwrap();
     let q = fv_mesh::MeshQuality::new(&bodies[0].mesh, &bodies[0].geom);
-    assert!(q.max_non_orthogonality > 15.0, "mesh not distorted enough: {q:?}");
+    assert!(
+        q.max_non_orthogonality > 15.0,
+        "mesh not distorted enough: {q:?}"
+    );
     bodies[0].refresh_conditions(1.0);
     let mut solver = SegregatedSolver::new(&bodies, &case.solver);
-    solver.assemble_and_factorise(&bodies, &case.solver.linear).unwrap();
+    solver
+        .assemble_and_factorise(&bodies, &case.solver.linear)
+        .unwrap();
     let info = solver.solve_increment(&mut bodies, |_, _| {}).unwrap();
     assert!(info.converged);
     let mut max_dev = 0.0f64;

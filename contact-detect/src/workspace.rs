@@ -1,0 +1,117 @@
+//! Per-call data shared by all detectors: h̄, face boxes, contact zone,
+//! and the pair test that defines a candidate pair.
+use crate::contact_zone::ContactZone;
+use crate::convex_hull_2d::V2;
+use crate::face_boxes::{mean_face_size, FaceBoxes};
+use crate::sat_obb_obb::obb_overlap;
+use crate::sat_polygon_polygon::polygons_overlap;
+use crate::surface_check::check_surface;
+use crate::{DetectError, DetectParams, DetectionStats};
+use fv_mesh::{Real, Surface};
+
+/// Largest slave polygon projected on the stack; larger ones allocate.
+const STACK_POLYGON: usize = 16;
+
+/// Boxes, zone and parameters of one detection call (allocated once,
+/// refilled every call).
+#[derive(Debug, Default, Clone)]
+pub struct Workspace {
+    /// Parameters in force.
+    pub params: DetectParams,
+    /// h̄ used for this call (eq. 4.10).
+    pub h: Real,
+    /// Master face boxes.
+    pub master: FaceBoxes,
+    /// Slave face boxes.
+    pub slave: FaceBoxes,
+    /// Contact zone and the faces in it (Fig. 4.11).
+    pub zone: ContactZone,
+}
+
+impl Workspace {
+    /// Checks the inputs, then builds h̄, every face box and the contact zone.
+    /// Cost O(faces) with a small constant (rotating calipers per face).
+    pub fn prepare(
+        &mut self,
+        master: &Surface,
+        slave: &Surface,
+        params: &DetectParams,
+    ) -> Result<(), DetectError> {
+        params.validate()?;
+        check_surface(master, "master")?;
+        check_surface(slave, "slave")?;
+        self.params = *params;
+        self.h = params
+            .mean_cell_height
+            .or_else(|| mean_face_size(master, slave))
+            .unwrap_or(0.0);
+        let p = params;
+        self.master
+            .update(master, self.h, p.extrusion_out, p.extrusion_in, p.inflation);
+        self.slave
+            .update(slave, self.h, p.extrusion_out, p.extrusion_in, p.inflation);
+        self.zone.update(&self.master, &self.slave);
+        Ok(())
+    }
+
+    /// Statistics of the prepared call, before any pair test.
+    pub fn base_stats(&self) -> DetectionStats {
+        DetectionStats {
+            mean_cell_height: self.h,
+            master_faces_in_zone: self.zone.master_faces.len(),
+            slave_faces_in_zone: self.zone.slave_faces.len(),
+            skipped_faces: self.master.n_invalid + self.slave.n_invalid,
+            ..Default::default()
+        }
+    }
+
+    /// Global phase for `(m, s)`: the AABBs of the OBBs meet, then the OBBs
+    /// overlap (3-D SAT). Both faces must be valid (invalid ones have empty AABBs).
+    #[inline]
+    pub fn global_test(&self, m: usize, s: usize, stats: &mut DetectionStats) -> bool {
+        stats.aabb_tests += 1;
+        if !self.master.aabb[m].intersects(&self.slave.aabb[s]) {
+            return false;
+        }
+        stats.obb_tests += 1;
+        obb_overlap(&self.master.obb[m], &self.slave.obb[s])
+    }
+
+    /// Local phase for `(m, s)`: slave polygon projected onto the plane of
+    /// master face `m` overlaps polygon `m` (2-D SAT with the touch tolerance).
+    #[inline]
+    pub fn local_test(
+        &self,
+        slave: &Surface,
+        m: usize,
+        s: usize,
+        stats: &mut DetectionStats,
+    ) -> bool {
+        stats.polygon_tests += 1;
+        let b = &self.master.obb[m];
+        let (u, v, c) = (b.axes[0], b.axes[1], b.centre);
+        let project = |p: &u32| {
+            let r = slave.points[*p as usize] - c;
+            V2::new(r.dot(&u), r.dot(&v))
+        };
+        let tol = self.params.touch_tolerance * self.master.scale[m];
+        let mpoly = self.master.polygon(m);
+        let pts = slave.face(s);
+        if pts.len() <= STACK_POLYGON {
+            let mut buf = [V2::zeros(); STACK_POLYGON];
+            for (q, p) in buf.iter_mut().zip(pts) {
+                *q = project(p);
+            }
+            polygons_overlap(mpoly, &buf[..pts.len()], tol)
+        } else {
+            let poly: Vec<V2> = pts.iter().map(project).collect();
+            polygons_overlap(mpoly, &poly, tol)
+        }
+    }
+
+    /// The pair definition: global phase and local phase (see the crate docs).
+    #[inline]
+    pub fn is_pair(&self, slave: &Surface, m: usize, s: usize, stats: &mut DetectionStats) -> bool {
+        self.global_test(m, s, stats) && self.local_test(slave, m, s, stats)
+    }
+}

@@ -9,8 +9,20 @@ mod boundary_conditions;
 mod least_squares_gradient;
 mod solid_momentum;
 
+pub mod bicgstab_ilu0;
+pub mod csr;
+pub mod direct;
+pub mod linear_solver;
+pub mod pcg_ic0;
+
 pub use boundary_conditions::{wedge_rotations, PatchCondition};
 pub use least_squares_gradient::LeastSquaresGradient;
 pub use solid_momentum::{MomentumParams, SolidMomentum};
+
+pub use bicgstab_ilu0::{BicgstabIlu0, BicgstabParams};
+pub use csr::{CsrMatrix, FaceSlots, PatternGrowth};
+pub use direct::{DirectMethod, DirectSolver};
+pub use linear_solver::{FactorisationInfo, LinearSolver, LinearSolverError, SolveInfo};
+pub use pcg_ic0::{PcgIc0, PcgParams};
 
 pub use fv_mesh::{Real, Tensor, Vector};

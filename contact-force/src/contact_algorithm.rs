@@ -1,0 +1,207 @@
+//! The contact-force seam: one trait, one file per algorithm, selection by
+//! name (`contact_algorithm = "..."` in the case file).
+use crate::contact_tractions::{ContactStats, ContactTractions};
+use crate::coulomb_friction::FrictionState;
+use crate::face_pairs::{check_pairs, FacePairs};
+use crate::penalty::ContactLaw;
+use crate::{ContactError, Pointwise, SegmentToSegment};
+use fv_mesh::Surface;
+use std::fmt;
+use std::str::FromStr;
+
+/// A contact-force algorithm (thesis §4.3, §4.4): from the current master
+/// and slave surfaces and their candidate pairs, the penalty tractions on
+/// both surfaces (explicit Neumann–Neumann coupling, §4.1.3).
+///
+/// Called once per outer iteration after the surfaces were moved and the
+/// pairs detected. An algorithm keeps the friction history of one contact
+/// pair: the surface positions at the start of the increment (slip is
+/// measured from them) and, with [`crate::SlipHistory::Accumulated`], the
+/// committed elastic slip.
+pub trait ContactAlgorithm: Send {
+    /// Computes tractions and contact quantities into `out` (resized to the
+    /// surfaces) and returns the summary. Fails only on inconsistent input
+    /// (pair indices out of range, invalid law); degenerate geometry is
+    /// skipped. On the first call (or when a surface changed its number of
+    /// points) the current positions become the slip reference.
+    fn compute(
+        &mut self,
+        master: &Surface,
+        slave: &Surface,
+        pairs: &dyn FacePairs,
+        law: &ContactLaw,
+        out: &mut ContactTractions,
+    ) -> Result<ContactStats, ContactError>;
+
+    /// End of a converged increment: the given (converged) positions become
+    /// the slip reference of the next increment and the elastic slip of the
+    /// last [`ContactAlgorithm::compute`] is committed.
+    fn commit_increment(&mut self, master: &Surface, slave: &Surface);
+
+    /// Forgets the friction history (new problem).
+    fn reset(&mut self);
+
+    /// Which algorithm this is.
+    fn kind(&self) -> ContactAlgorithmKind;
+}
+
+/// The contact algorithms, by case-file name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum ContactAlgorithmKind {
+    /// [`SegmentToSegment`] (§4.4), `"segment-to-segment"`.
+    #[default]
+    SegmentToSegment,
+    /// [`Pointwise`] (§4.3), `"pointwise"`.
+    Pointwise,
+}
+
+/// Names of variants that exist in the thesis but not yet here.
+const NOT_YET: [(&str, &str); 2] = [
+    (
+        "pointwise-nagata",
+        "Nagata surface smoothing, §4.6, comes with contact-smooth",
+    ),
+    (
+        "segment-to-segment-nagata",
+        "Nagata surface smoothing, §4.6, comes with contact-smooth",
+    ),
+];
+
+impl ContactAlgorithmKind {
+    /// Every available algorithm, in the order of [`ContactAlgorithmKind::valid_names`].
+    pub const ALL: [ContactAlgorithmKind; 2] = [
+        ContactAlgorithmKind::SegmentToSegment,
+        ContactAlgorithmKind::Pointwise,
+    ];
+
+    /// The case-file name.
+    pub fn name(self) -> &'static str {
+        match self {
+            ContactAlgorithmKind::SegmentToSegment => "segment-to-segment",
+            ContactAlgorithmKind::Pointwise => "pointwise",
+        }
+    }
+
+    /// The valid names, comma separated.
+    pub fn valid_names() -> String {
+        Self::ALL.map(|k| k.name()).join(", ")
+    }
+
+    /// Parses a case-file name. An unknown name is rejected with the list
+    /// of valid ones; the Nagata variants are known but "not available yet".
+    pub fn from_name(name: &str) -> Result<Self, ContactError> {
+        let name = name.trim();
+        if let Some(k) = Self::ALL.into_iter().find(|k| k.name() == name) {
+            return Ok(k);
+        }
+        if let Some(&(_, reason)) = NOT_YET.iter().find(|(n, _)| *n == name) {
+            return Err(ContactError::NotAvailable {
+                name: name.to_string(),
+                reason,
+                valid: Self::valid_names(),
+            });
+        }
+        Err(ContactError::UnknownAlgorithm {
+            name: name.to_string(),
+            valid: Self::valid_names(),
+        })
+    }
+
+    /// A new algorithm of this kind, with no history.
+    pub fn build(self) -> Box<dyn ContactAlgorithm> {
+        match self {
+            ContactAlgorithmKind::SegmentToSegment => Box::new(SegmentToSegment::new()),
+            ContactAlgorithmKind::Pointwise => Box::new(Pointwise::new()),
+        }
+    }
+}
+
+impl fmt::Display for ContactAlgorithmKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for ContactAlgorithmKind {
+    type Err = ContactError;
+    fn from_str(s: &str) -> Result<Self, ContactError> {
+        Self::from_name(s)
+    }
+}
+
+/// Validates the law and the pairs against the surfaces.
+pub(crate) fn check_inputs(
+    master: &Surface,
+    slave: &Surface,
+    pairs: &dyn FacePairs,
+    law: &ContactLaw,
+) -> Result<(), ContactError> {
+    law.validate()?;
+    check_pairs(pairs, master.n_faces(), slave.n_faces())
+}
+
+/// The summary fields that follow from the per-face output (forces,
+/// maximum pressure, active and stick/slip counts); the algorithm fills in
+/// contact area, penetration and overlapping pairs.
+pub(crate) fn finish_stats(
+    master: &Surface,
+    slave: &Surface,
+    out: &ContactTractions,
+) -> ContactStats {
+    let mut st = ContactStats::default();
+    for m in 0..master.n_faces() {
+        let a = master.face_mag[m];
+        st.normal_force += out.master.pressure[m] * a;
+        st.tangential_force += out.master.tangential_traction[m] * a;
+        st.master_force += out.master.traction(m) * a;
+        st.max_pressure = st.max_pressure.max(out.master.pressure[m]);
+        if out.master.contact_fraction[m] > 0.0 {
+            st.n_active += 1;
+        }
+    }
+    for s in 0..slave.n_faces() {
+        st.slave_force += out.slave.traction(s) * slave.face_mag[s];
+        st.max_pressure = st.max_pressure.max(out.slave.pressure[s]);
+    }
+    for state in out
+        .master
+        .friction_state
+        .iter()
+        .chain(&out.slave.friction_state)
+    {
+        match state {
+            FrictionState::Stick => st.n_stick += 1,
+            FrictionState::Slip => st.n_slip += 1,
+            FrictionState::Inactive => {}
+        }
+    }
+    st
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_round_trip_unknown_and_not_yet() {
+        for k in ContactAlgorithmKind::ALL {
+            assert_eq!(ContactAlgorithmKind::from_name(k.name()).unwrap(), k);
+            assert_eq!(k.to_string().parse::<ContactAlgorithmKind>().unwrap(), k);
+            assert_eq!(k.build().kind(), k);
+        }
+        let msg = ContactAlgorithmKind::from_name("mortar")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            msg.contains("mortar") && msg.contains("segment-to-segment, pointwise"),
+            "{msg}"
+        );
+        let e = ContactAlgorithmKind::from_name("pointwise-nagata").unwrap_err();
+        assert!(matches!(e, ContactError::NotAvailable { .. }));
+        let msg = e.to_string();
+        assert!(
+            msg.contains("not available yet") && msg.contains("pointwise-nagata"),
+            "{msg}"
+        );
+    }
+}

@@ -1,0 +1,359 @@
+//! The pointwise contact algorithm (thesis §4.3, eqs. 4.11–4.12; Cardiff
+//! et al.): gaps at the slave points, pressure averaged to the slave faces,
+//! tractions transferred to the master by GGI (eq. 4.5).
+use crate::auxiliary_plane::{AuxiliaryPlane, MIN_FACING_COSINE};
+use crate::contact_algorithm::{
+    check_inputs, finish_stats, ContactAlgorithm, ContactAlgorithmKind,
+};
+use crate::contact_tractions::{ContactStats, ContactTractions, NO_GAP};
+use crate::coulomb_friction::{face_friction, FrictionState, SlipHistory};
+use crate::face_pairs::{FacePairs, PairsTranspose};
+use crate::ggi::GgiScratch;
+use crate::increment_state::{face_mean, IncrementState};
+use crate::penalty::{normal_pressure, ContactLaw};
+use crate::segment_to_segment::valid_face;
+use crate::sutherland_hodgman::{clip_non_positive, signed_area, Point2};
+use crate::ContactError;
+use fv_mesh::{Real, Surface, Vector};
+
+/// Pointwise contact (§4.3), the baseline the thesis compares against:
+///
+/// 1. gap at every slave point by closest-point projection (eq. 2.34) onto
+///    the master faces paired with the point's faces, measured along the
+///    master face normal; a point whose closest point lies on the border of
+///    the master surface, or that faces no master face, has no gap;
+/// 2. slave face normal traction `−(1/n_p) Σ_p ε_n ⟨−g_p⟩ n_s` (eq. 4.11,
+///    unit point weights; the printed `1/|Γ_bs|` factor is dimensionally a
+///    misprint and is not applied, as in solids4foam);
+/// 3. friction at the slave face centres with the slip of eq. 4.12, the
+///    master increment interpolated by normalised GGI weights (eq. 4.6);
+/// 4. master tractions `t_m = −Σ_k ω_{j,k} t_s,k` (eq. 4.5), normal and
+///    tangential parts separately.
+///
+/// The contact fraction β of a slave face is the part of its centre
+/// triangulation (centre value = mean of point gaps) where the linearly
+/// interpolated gap is ≤ 0; on the master it is GGI-transferred.
+///
+/// Cost per call O(pairs · points² + slave points · candidates).
+#[derive(Debug, Clone, Default)]
+pub struct Pointwise {
+    state: IncrementState,
+    transpose: PairsTranspose,
+    ggi_scratch: GgiScratch,
+    point_gap: Vec<Real>,
+    candidates: Vec<u32>,
+    master_du: Vec<Vector>,
+    slave_du_hat: Vec<Vector>,
+    slave_values: Vec<Vector>,
+    tri: Vec<Point2>,
+    tri_values: Vec<Real>,
+    clipped: Vec<Point2>,
+    clipped_values: Vec<Real>,
+}
+
+/// Closest point of face `f` to `x`: the orthogonal projection on the face
+/// plane if it falls inside the (convex) face, else the closest point of
+/// its boundary; with the index (in the face) of that boundary side.
+fn closest_point_on_face(surface: &Surface, f: usize, x: &Vector) -> (Vector, Option<usize>) {
+    let n = surface.face_normals[f];
+    let c = surface.face_centres[f];
+    let xp = x - n * n.dot(&(x - c));
+    let fp = surface.face(f);
+    let k = fp.len();
+    let mut inside = true;
+    for i in 0..k {
+        let a = surface.points[fp[i] as usize];
+        let b = surface.points[fp[(i + 1) % k] as usize];
+        let e = b - a;
+        if n.dot(&e.cross(&(xp - a))) < -1e-10 * e.norm_squared() {
+            inside = false;
+            break;
+        }
+    }
+    if inside {
+        return (xp, None);
+    }
+    let mut best = (xp, None, Real::INFINITY);
+    for i in 0..k {
+        let a = surface.points[fp[i] as usize];
+        let b = surface.points[fp[(i + 1) % k] as usize];
+        let e = b - a;
+        let l2 = e.norm_squared();
+        let t = if l2 > 0.0 {
+            ((xp - a).dot(&e) / l2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let q = a + e * t;
+        let d = (xp - q).norm_squared();
+        if d < best.2 {
+            best = (q, Some(i), d);
+        }
+    }
+    (best.0, best.1)
+}
+
+impl Pointwise {
+    /// A new algorithm with no friction history.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Step 1: gap at every slave point (NO_GAP where there is none).
+    fn point_gaps(&mut self, master: &Surface, slave: &Surface) {
+        self.point_gap.clear();
+        self.point_gap.resize(slave.n_points(), NO_GAP);
+        for p in 0..slave.n_points() {
+            let x = slave.points[p];
+            if !x.iter().all(|v| v.is_finite()) {
+                continue;
+            }
+            self.candidates.clear();
+            for &f in slave.faces_of_point(p) {
+                self.candidates
+                    .extend_from_slice(self.transpose.masters_of(f as usize));
+            }
+            self.candidates.sort_unstable();
+            self.candidates.dedup();
+            let np = slave.point_normals[p];
+            // (distance², gap, on border)
+            let mut best: Option<(Real, Real, bool)> = None;
+            for &m in &self.candidates {
+                let mu = m as usize;
+                if !valid_face(master, mu) {
+                    continue;
+                }
+                let nm = master.face_normals[mu];
+                if np.norm_squared() > 0.0 && !(nm.dot(&np) <= -MIN_FACING_COSINE) {
+                    continue;
+                }
+                let (q, side) = closest_point_on_face(master, mu, &x);
+                let d2 = (x - q).norm_squared();
+                let border = side
+                    .is_some_and(|i| master.is_border_edge(master.face_edge_ids(mu)[i] as usize));
+                // ties (a point over a shared edge) go to the face containing the projection
+                let better = match best {
+                    None => true,
+                    Some((bd, _, _)) => d2 < bd * (1.0 - 1e-12) || (d2 <= bd && side.is_none()),
+                };
+                if better {
+                    best = Some((d2, (x - q).dot(&nm), border));
+                }
+            }
+            if let Some((_, g, border)) = best {
+                if !border {
+                    self.point_gap[p] = g;
+                }
+            }
+        }
+    }
+
+    /// Contact fraction of slave face `s` from its point gaps.
+    fn slave_fraction(&mut self, slave: &Surface, s: usize) -> Real {
+        let Some(plane) = AuxiliaryPlane::of_face(slave, s) else {
+            return 0.0;
+        };
+        let fp = slave.face(s);
+        let k = fp.len();
+        let size = slave.face_mag[s].sqrt();
+        let g = |p: u32| {
+            let g = self.point_gap[p as usize];
+            if g.is_finite() {
+                g
+            } else {
+                size
+            }
+        };
+        let gc = fp.iter().map(|&p| g(p)).sum::<Real>() / k as Real;
+        let c = plane.project(&slave.face_centres[s]);
+        let (mut total, mut contact) = (0.0, 0.0);
+        for i in 0..k {
+            let (a, b) = (fp[i], fp[(i + 1) % k]);
+            self.tri.clear();
+            self.tri.extend([
+                c,
+                plane.project(&slave.points[a as usize]),
+                plane.project(&slave.points[b as usize]),
+            ]);
+            self.tri_values.clear();
+            self.tri_values.extend([gc, g(a), g(b)]);
+            total += signed_area(&self.tri).abs();
+            clip_non_positive(
+                &self.tri,
+                &self.tri_values,
+                &mut self.clipped,
+                &mut self.clipped_values,
+            );
+            contact += signed_area(&self.clipped).abs();
+        }
+        if total > 0.0 {
+            (contact / total).min(1.0)
+        } else {
+            0.0
+        }
+    }
+}
+
+impl ContactAlgorithm for Pointwise {
+    fn compute(
+        &mut self,
+        master: &Surface,
+        slave: &Surface,
+        pairs: &dyn FacePairs,
+        law: &ContactLaw,
+        out: &mut ContactTractions,
+    ) -> Result<ContactStats, ContactError> {
+        check_inputs(master, slave, pairs, law)?;
+        let (nm, ns) = (master.n_faces(), slave.n_faces());
+        out.reset(nm, ns);
+        self.state.prepare(master, slave);
+        self.state
+            .pending_master
+            .iter_mut()
+            .for_each(|v| *v = Vector::zeros());
+        self.state
+            .pending_slave
+            .iter_mut()
+            .for_each(|v| *v = Vector::zeros());
+        self.transpose.build(pairs, ns);
+        out.ggi.build(master, slave, pairs, &mut self.ggi_scratch);
+        self.point_gaps(master, slave);
+
+        // 2: slave normal traction (eq. 4.11), gap, contact fraction
+        let mut contact_area = 0.0;
+        for s in 0..ns {
+            if !valid_face(slave, s) {
+                continue;
+            }
+            let fp = slave.face(s);
+            let inv = 1.0 / fp.len() as Real;
+            let p = fp
+                .iter()
+                .map(|&q| normal_pressure(law.normal_penalty, self.point_gap[q as usize]))
+                .sum::<Real>()
+                * inv;
+            let (mut gsum, mut gn) = (0.0, 0usize);
+            for &q in fp {
+                let g = self.point_gap[q as usize];
+                if g.is_finite() {
+                    gsum += g;
+                    gn += 1;
+                }
+            }
+            if gn > 0 {
+                out.slave.gap[s] = gsum / gn as Real;
+            }
+            if p > 0.0 {
+                out.slave.pressure[s] = p;
+                out.slave.normal_traction[s] = -slave.face_normals[s] * p;
+                let beta = self.slave_fraction(slave, s);
+                out.slave.contact_fraction[s] = beta;
+                contact_area += beta * slave.face_mag[s];
+            }
+        }
+
+        // 3: slave friction (eq. 4.12)
+        let accumulated = law.slip_history == SlipHistory::Accumulated;
+        self.master_du.clear();
+        self.master_du
+            .extend((0..nm).map(|m| face_mean(master, &self.state.du_master, m)));
+        self.slave_du_hat.clear();
+        self.slave_du_hat.resize(ns, Vector::zeros());
+        out.ggi
+            .to_slave(&self.master_du, &mut self.slave_du_hat, true);
+        for s in 0..ns {
+            let p = out.slave.pressure[s];
+            if !(p > 0.0) {
+                continue;
+            }
+            let own = face_mean(slave, &self.state.du_slave, s);
+            let hist = if accumulated {
+                self.state.elastic_slave[s]
+            } else {
+                Vector::zeros()
+            };
+            let ff = face_friction(
+                &slave.face_normals[s],
+                p,
+                out.slave.contact_fraction[s],
+                &own,
+                &self.slave_du_hat[s],
+                &hist,
+                law.tangential_penalty,
+                law.friction,
+            );
+            out.slave.tangential_traction[s] = ff.traction;
+            out.slave.slip[s] = ff.slip;
+            out.slave.friction_state[s] = ff.state;
+            self.state.pending_slave[s] = ff.elastic_slip;
+        }
+
+        // 4: transfer to the master (eq. 4.5)
+        self.slave_values.clear();
+        self.slave_values
+            .extend(out.slave.normal_traction.iter().map(|t| -t));
+        out.ggi
+            .to_master(&self.slave_values, &mut out.master.normal_traction, false);
+        self.slave_values.clear();
+        self.slave_values
+            .extend(out.slave.tangential_traction.iter().map(|t| -t));
+        out.ggi.to_master(
+            &self.slave_values,
+            &mut out.master.tangential_traction,
+            false,
+        );
+        self.slave_values.clear();
+        self.slave_values.extend(out.slave.slip.iter().map(|t| -t));
+        out.ggi
+            .to_master(&self.slave_values, &mut out.master.slip, true);
+        out.ggi.to_master(
+            &out.slave.contact_fraction,
+            &mut out.master.contact_fraction,
+            false,
+        );
+        for m in 0..nm {
+            out.master.pressure[m] = -out.master.normal_traction[m].dot(&master.face_normals[m]);
+            let (faces, areas) = out.ggi.master_row(m);
+            let (mut gsum, mut asum, mut dominant) = (0.0, 0.0, (0.0, FrictionState::Inactive));
+            for (&s, &a) in faces.iter().zip(areas) {
+                let g = out.slave.gap[s as usize];
+                if g.is_finite() {
+                    gsum += g * a;
+                    asum += a;
+                }
+                if a > dominant.0 {
+                    dominant = (a, out.slave.friction_state[s as usize]);
+                }
+            }
+            if asum > 0.0 {
+                out.master.gap[m] = gsum / asum;
+            }
+            out.master.contact_fraction[m] = out.master.contact_fraction[m].min(1.0);
+            if out.master.contact_fraction[m] > 0.0 {
+                out.master.friction_state[m] = dominant.1;
+            }
+        }
+
+        let mut stats = finish_stats(master, slave, out);
+        stats.contact_area = contact_area;
+        stats.max_penetration = self
+            .point_gap
+            .iter()
+            .filter(|g| g.is_finite())
+            .fold(0.0, |a: Real, &g| a.max(-g));
+        stats.n_overlapping_pairs = out.ggi.n_pairs();
+        Ok(stats)
+    }
+
+    fn commit_increment(&mut self, master: &Surface, slave: &Surface) {
+        self.state.commit(master, slave);
+    }
+
+    fn reset(&mut self) {
+        self.state.reset();
+    }
+
+    fn kind(&self) -> ContactAlgorithmKind {
+        ContactAlgorithmKind::Pointwise
+    }
+}

@@ -1,0 +1,388 @@
+//! The segment-to-segment contact algorithm (thesis §4.4, eqs. 4.14–4.27).
+use crate::auxiliary_plane::{AuxiliaryPlane, AREA_TOLERANCE, MIN_FACING_COSINE};
+use crate::barycentric::{locate_in_polygon, Located};
+use crate::contact_algorithm::{
+    check_inputs, finish_stats, ContactAlgorithm, ContactAlgorithmKind,
+};
+use crate::contact_tractions::{ContactStats, ContactTractions};
+use crate::coulomb_friction::{face_friction, SlipHistory};
+use crate::face_pairs::{FacePairs, PairsTranspose};
+use crate::increment_state::{face_mean, IncrementState};
+use crate::occluded_volume::central_integral;
+use crate::penalty::ContactLaw;
+use crate::sutherland_hodgman::{clip_convex, clip_non_positive, signed_area, ClipScratch, Point2};
+use crate::ContactError;
+use fv_mesh::{Real, Surface, Vector};
+
+/// Segment-to-segment contact (§4.4): the penalty pressure is integrated
+/// over the segments into which the projected slave faces cut each master
+/// face, so the normal traction of both sides comes from the same occluded
+/// volumes (action = reaction to round-off).
+///
+/// For every candidate pair (master face m, slave face s):
+///
+/// a. auxiliary plane through the master face centre with its normal n_m;
+/// b. master and slave polygons projected on it (the master to remove
+///    warping); pairs that do not face each other are skipped
+///    ([`crate::MIN_FACING_COSINE`]);
+/// c. Sutherland–Hodgman intersection k = s̄ ∩ m̄ (its area is the GGI
+///    weight, eq. 4.7);
+/// c*. the gap, measured by ray tracing along n_m (eq. 4.14) to the slave
+///    face plane, is evaluated at the points of k, and k is clipped to its
+///    non-positive-gap part k';
+/// d–e. centre triangulation of k' and the occluded volume
+///    `ḡ_k Γ_k = Σ_i ⅓ (g_i + g_{i+1} + g_c) Γ_i` (eqs. 4.24–4.25).
+///
+/// Master face force `ε_n n_m Σ_k ḡ_k Γ_k` (eq. 4.19), traction = force /
+/// |Γ_m| (eq. 4.16); each slave face receives the opposite of its segments'
+/// forces, divided by its own area. For a gap linear over each segment (flat
+/// faces) the integral is exact.
+///
+/// Friction is computed on both surfaces independently (eqs. 4.20–4.23):
+/// the slip of a face is its centre's displacement increment minus the
+/// opposite surface's, interpolated by barycentric coordinates on the
+/// centre triangulation of the opposite face hit by the ray from the face
+/// centre along the face normal (eq. 4.26); the face's own centre increment
+/// is the mean of its point increments. Displacement increments are
+/// positions minus the positions at the last [`ContactAlgorithm::commit_increment`].
+///
+/// Cost per call O(pairs · points²); after the first call no allocation
+/// unless the surfaces or pair counts grow.
+#[derive(Debug, Clone, Default)]
+pub struct SegmentToSegment {
+    state: IncrementState,
+    transpose: PairsTranspose,
+    scratch: Scratch,
+    acc: Accumulators,
+}
+
+#[derive(Debug, Clone, Default)]
+struct Scratch {
+    master: Vec<Point2>,
+    slave_raw: Vec<Point2>,
+    slave: Vec<Point2>,
+    segment: Vec<Point2>,
+    values: Vec<Real>,
+    contact: Vec<Point2>,
+    contact_values: Vec<Real>,
+    clip: ClipScratch,
+}
+
+/// Per-face sums over segments.
+#[derive(Debug, Clone, Default)]
+struct Accumulators {
+    master_volume: Vec<Real>,
+    master_contact: Vec<Real>,
+    master_overlap: Vec<Real>,
+    master_gap: Vec<Real>,
+    master_located: Vec<Option<Located>>,
+    slave_force: Vec<Vector>,
+    slave_contact: Vec<Real>,
+    slave_overlap: Vec<Real>,
+    slave_gap: Vec<Real>,
+}
+
+fn zeroed<T: Clone>(v: &mut Vec<T>, n: usize, zero: T) {
+    v.clear();
+    v.resize(n, zero);
+}
+
+impl Accumulators {
+    fn reset(&mut self, nm: usize, ns: usize) {
+        zeroed(&mut self.master_volume, nm, 0.0);
+        zeroed(&mut self.master_contact, nm, 0.0);
+        zeroed(&mut self.master_overlap, nm, 0.0);
+        zeroed(&mut self.master_gap, nm, 0.0);
+        zeroed(&mut self.master_located, nm, None);
+        zeroed(&mut self.slave_force, ns, Vector::zeros());
+        zeroed(&mut self.slave_contact, ns, 0.0);
+        zeroed(&mut self.slave_overlap, ns, 0.0);
+        zeroed(&mut self.slave_gap, ns, 0.0);
+    }
+}
+
+/// Whether face `f` has a positive, finite area (degenerate faces carry no traction).
+#[inline]
+pub(crate) fn valid_face(surface: &Surface, f: usize) -> bool {
+    let a = surface.face_mag[f];
+    a > 0.0 && a.is_finite() && surface.face_centres[f].iter().all(|x| x.is_finite())
+}
+
+/// Keeps the better of two locations (larger smallest barycentric coordinate).
+#[inline]
+pub(crate) fn keep_best(best: &mut Option<Located>, cand: Option<Located>) {
+    if let Some(c) = cand {
+        if best.is_none_or(|b| c.min_zeta() > b.min_zeta()) {
+            *best = Some(c);
+        }
+    }
+}
+
+impl SegmentToSegment {
+    /// A new algorithm with no friction history.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Steps a–e for all pairs: fills the accumulators and the GGI weights;
+    /// returns (max penetration, overlapping pairs).
+    fn integrate_segments(
+        &mut self,
+        master: &Surface,
+        slave: &Surface,
+        pairs: &dyn FacePairs,
+        out: &mut ContactTractions,
+    ) -> (Real, usize) {
+        let sc = &mut self.scratch;
+        let acc = &mut self.acc;
+        let mut min_gap: Real = 0.0;
+        let mut n_overlap = 0;
+        out.ggi.begin(master, slave);
+        let origin = Point2::zeros();
+        for m in 0..master.n_faces() {
+            let plane = if valid_face(master, m) {
+                AuxiliaryPlane::of_face(master, m)
+            } else {
+                None
+            };
+            let Some(plane) = plane else {
+                out.ggi.end_row();
+                continue;
+            };
+            plane.project_face(master, m, &mut sc.master);
+            let tol = AREA_TOLERANCE * master.face_mag[m];
+            for &s in pairs.slaves_of(m) {
+                let su = s as usize;
+                if !valid_face(slave, su) {
+                    continue;
+                }
+                let Some(gap) = plane.ray_gap(&slave.face_centres[su], &slave.face_normals[su])
+                else {
+                    continue;
+                };
+                // b: slave polygon in face order (for 4.26) and counter-clockwise (for c)
+                let a_raw = plane.project_face(slave, su, &mut sc.slave_raw);
+                sc.slave.clear();
+                sc.slave.extend_from_slice(&sc.slave_raw);
+                if a_raw < 0.0 {
+                    // project_face reversed slave_raw to make it CCW; restore face order
+                    sc.slave_raw.reverse();
+                }
+                keep_best(
+                    &mut acc.master_located[m],
+                    locate_in_polygon(s, &sc.slave_raw, &origin),
+                );
+                // c
+                clip_convex(&sc.slave, &sc.master, &mut sc.segment, &mut sc.clip);
+                let area = signed_area(&sc.segment);
+                if !(area > tol) {
+                    continue;
+                }
+                n_overlap += 1;
+                out.ggi.push(s, area);
+                sc.values.clear();
+                sc.values.extend(sc.segment.iter().map(|p| gap.value(p)));
+                let (_, integral) = central_integral(&sc.segment, &sc.values);
+                acc.master_overlap[m] += area;
+                acc.master_gap[m] += integral;
+                acc.slave_overlap[su] += area;
+                acc.slave_gap[su] += integral;
+                // c*, d, e
+                clip_non_positive(
+                    &sc.segment,
+                    &sc.values,
+                    &mut sc.contact,
+                    &mut sc.contact_values,
+                );
+                let (contact_area, volume) = central_integral(&sc.contact, &sc.contact_values);
+                if contact_area > tol && volume < 0.0 {
+                    min_gap = sc.contact_values.iter().fold(min_gap, |a, &g| a.min(g));
+                    acc.master_volume[m] += volume;
+                    acc.master_contact[m] += contact_area;
+                    acc.slave_contact[su] += contact_area;
+                    // force on the slave: the reaction of ε_n n_m ḡΓ (eq. 4.19)
+                    acc.slave_force[su] -= plane.normal * volume;
+                }
+            }
+            out.ggi.end_row();
+        }
+        out.ggi.finish();
+        (-min_gap, n_overlap)
+    }
+
+    /// Normal tractions, pressures, gaps and contact fractions from the sums.
+    fn normal_tractions(
+        &self,
+        master: &Surface,
+        slave: &Surface,
+        law: &ContactLaw,
+        out: &mut ContactTractions,
+    ) {
+        let acc = &self.acc;
+        let eps = law.normal_penalty;
+        for m in 0..master.n_faces() {
+            let a = master.face_mag[m];
+            if acc.master_overlap[m] > 0.0 {
+                out.master.gap[m] = acc.master_gap[m] / acc.master_overlap[m];
+            }
+            if acc.master_contact[m] > 0.0 {
+                // eqs. 4.16, 4.19
+                out.master.normal_traction[m] =
+                    master.face_normals[m] * (eps * acc.master_volume[m] / a);
+                out.master.pressure[m] = -eps * acc.master_volume[m] / a;
+                out.master.contact_fraction[m] = (acc.master_contact[m] / a).min(1.0);
+            }
+        }
+        for s in 0..slave.n_faces() {
+            let a = slave.face_mag[s];
+            if acc.slave_overlap[s] > 0.0 {
+                out.slave.gap[s] = acc.slave_gap[s] / acc.slave_overlap[s];
+            }
+            if acc.slave_contact[s] > 0.0 {
+                let t = acc.slave_force[s] * (eps / a);
+                out.slave.normal_traction[s] = t;
+                out.slave.pressure[s] = -t.dot(&slave.face_normals[s]);
+                out.slave.contact_fraction[s] = (acc.slave_contact[s] / a).min(1.0);
+            }
+        }
+    }
+
+    /// Friction on both surfaces (eqs. 4.20–4.23, 4.26).
+    fn friction(
+        &mut self,
+        master: &Surface,
+        slave: &Surface,
+        law: &ContactLaw,
+        out: &mut ContactTractions,
+    ) {
+        let accumulated = law.slip_history == SlipHistory::Accumulated;
+        let zero = Vector::zeros();
+        let st = &mut self.state;
+        for m in 0..master.n_faces() {
+            let p = out.master.pressure[m];
+            let Some(loc) = self.acc.master_located[m] else {
+                continue;
+            };
+            if !(p > 0.0) {
+                continue;
+            }
+            let own = face_mean(master, &st.du_master, m);
+            let other = loc.interpolate(slave, &st.du_slave);
+            let hist = if accumulated {
+                st.elastic_master[m]
+            } else {
+                zero
+            };
+            let ff = face_friction(
+                &master.face_normals[m],
+                p,
+                out.master.contact_fraction[m],
+                &own,
+                &other,
+                &hist,
+                law.tangential_penalty,
+                law.friction,
+            );
+            out.master.tangential_traction[m] = ff.traction;
+            out.master.slip[m] = ff.slip;
+            out.master.friction_state[m] = ff.state;
+            st.pending_master[m] = ff.elastic_slip;
+        }
+        let sc = &mut self.scratch;
+        let origin = Point2::zeros();
+        for s in 0..slave.n_faces() {
+            let p = out.slave.pressure[s];
+            if !(p > 0.0) {
+                continue;
+            }
+            let Some(plane) = AuxiliaryPlane::of_face(slave, s) else {
+                continue;
+            };
+            let mut best = None;
+            for &m in self.transpose.masters_of(s) {
+                let mu = m as usize;
+                if !valid_face(master, mu)
+                    || !(plane.normal.dot(&master.face_normals[mu]) <= -MIN_FACING_COSINE)
+                {
+                    continue;
+                }
+                sc.slave_raw.clear();
+                sc.slave_raw.extend(
+                    master
+                        .face(mu)
+                        .iter()
+                        .map(|&q| plane.project(&master.points[q as usize])),
+                );
+                keep_best(&mut best, locate_in_polygon(m, &sc.slave_raw, &origin));
+            }
+            let Some(loc) = best else { continue };
+            let own = face_mean(slave, &st.du_slave, s);
+            let other = loc.interpolate(master, &st.du_master);
+            let hist = if accumulated {
+                st.elastic_slave[s]
+            } else {
+                zero
+            };
+            let ff = face_friction(
+                &slave.face_normals[s],
+                p,
+                out.slave.contact_fraction[s],
+                &own,
+                &other,
+                &hist,
+                law.tangential_penalty,
+                law.friction,
+            );
+            out.slave.tangential_traction[s] = ff.traction;
+            out.slave.slip[s] = ff.slip;
+            out.slave.friction_state[s] = ff.state;
+            st.pending_slave[s] = ff.elastic_slip;
+        }
+    }
+}
+
+impl ContactAlgorithm for SegmentToSegment {
+    fn compute(
+        &mut self,
+        master: &Surface,
+        slave: &Surface,
+        pairs: &dyn FacePairs,
+        law: &ContactLaw,
+        out: &mut ContactTractions,
+    ) -> Result<ContactStats, ContactError> {
+        check_inputs(master, slave, pairs, law)?;
+        let (nm, ns) = (master.n_faces(), slave.n_faces());
+        out.reset(nm, ns);
+        self.acc.reset(nm, ns);
+        self.state.prepare(master, slave);
+        self.state
+            .pending_master
+            .iter_mut()
+            .for_each(|v| *v = Vector::zeros());
+        self.state
+            .pending_slave
+            .iter_mut()
+            .for_each(|v| *v = Vector::zeros());
+        self.transpose.build(pairs, ns);
+        let (max_penetration, n_overlap) = self.integrate_segments(master, slave, pairs, out);
+        self.normal_tractions(master, slave, law, out);
+        self.friction(master, slave, law, out);
+        let mut stats = finish_stats(master, slave, out);
+        stats.contact_area = self.acc.master_contact.iter().sum();
+        stats.max_penetration = max_penetration;
+        stats.n_overlapping_pairs = n_overlap;
+        Ok(stats)
+    }
+
+    fn commit_increment(&mut self, master: &Surface, slave: &Surface) {
+        self.state.commit(master, slave);
+    }
+
+    fn reset(&mut self) {
+        self.state.reset();
+    }
+
+    fn kind(&self) -> ContactAlgorithmKind {
+        ContactAlgorithmKind::SegmentToSegment
+    }
+}

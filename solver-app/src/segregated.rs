@@ -85,31 +85,39 @@ fn make_solver(s: &LinearSettings, n: usize) -> Box<dyn LinearSolver + Send> {
     }
 }
 
-/// Directions (0, 1, 2) that are out of plane for every body: all faces of
-/// all `empty` patches have their normal along that axis.
-fn empty_directions(bodies: &[Body]) -> [bool; 3] {
-    let mut any = false;
-    let mut along = [true; 3];
+/// Directions (0, 1, 2) that are not solved: the out-of-plane axis of a
+/// 2-D model (every `empty` face normal along it) and the circumferential
+/// axis of an axisymmetric wedge (every `wedge` face normal within 8° of it;
+/// the displacement has no swirl component, as OpenFOAM's solution
+/// directions). Such a direction must be shared by every deformable body.
+fn unsolved_directions(bodies: &[Body]) -> [bool; 3] {
+    // (any face seen, axis shared by all faces) for empty and for wedge faces
+    let mut kinds = [(false, [true; 3]); 2];
     for b in bodies.iter().filter(|b| !b.rigid) {
         for (p, c) in b.mesh.patches.iter().zip(&b.momentum.conditions) {
-            if let fv_discretise::PatchCondition::Empty = c {
-                for f in p.faces() {
-                    any = true;
-                    let n = b.geom.face_normals[f];
-                    for d in 0..3 {
-                        if n[d].abs() < 1.0 - 1e-6 {
-                            along[d] = false;
-                        }
+            let (kind, threshold) = match c {
+                fv_discretise::PatchCondition::Empty => (0, 1.0 - 1e-6),
+                fv_discretise::PatchCondition::Wedge(_) => (1, 0.99),
+                _ => continue,
+            };
+            for f in p.faces() {
+                kinds[kind].0 = true;
+                let n = b.geom.face_normals[f];
+                for d in 0..3 {
+                    if n[d].abs() < threshold {
+                        kinds[kind].1[d] = false;
                     }
                 }
             }
         }
     }
-    if any {
-        along
-    } else {
-        [false; 3]
+    let mut out = [false; 3];
+    for (seen, along) in kinds {
+        for d in 0..3 {
+            out[d] |= seen && along[d];
+        }
     }
+    out
 }
 
 impl SegregatedSolver {
@@ -190,7 +198,7 @@ impl SegregatedSolver {
                 }
             }
         }
-        let empty = empty_directions(bodies);
+        let empty = unsolved_directions(bodies);
         let mut diags: Vec<Vec<f64>> = Vec::new();
         let mut comp = [None; 3];
         for c in 0..3 {

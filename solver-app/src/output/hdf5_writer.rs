@@ -1,0 +1,658 @@
+//! [`ResultsWriter`]: `<title>.h5` in the layout of CASE_FORMAT.md and its
+//! `<title>.xdmf` sidecar, kept valid after every increment.
+//!
+//! Crash safety: every call that adds data ends with `H5Fflush`, and the
+//! XDMF is replaced atomically (temporary file + rename) after the flush,
+//! so a process killed between increments (SIGKILL included) leaves an
+//! `.h5` holding every increment written so far and an `.xdmf` listing
+//! them. The file is written with the library's default (earliest) format,
+//! which has no "file open" flag: it opens after a crash without
+//! `h5clear`. A kill *during* an increment's writes can leave that
+//! increment partial (its group exists but not all datasets); a power
+//! loss can lose what the OS had not yet written to disk (no `fsync`).
+//!
+//! HDF5 file locking is turned off for the writer so that ParaView or
+//! h5py can open the file while a run is going on.
+use std::path::{Path, PathBuf};
+
+use hdf5::types::VarLenUnicode;
+use hdf5::{Dataset, File, Group, H5Type, Location};
+
+use super::xdmf::{self, BodyGrid, IncrementRecord, PatchGrid};
+use super::{von_mises, BodyIncrement, CellMeshData, OutputError, PatchIncrement};
+
+/// Names a patch may not take: they are datasets or groups of
+/// `/time/<k>/<body>/`.
+const RESERVED: &[&str] = &[
+    "points",
+    "displacement",
+    "stress",
+    "von_mises",
+    "plastic_strain",
+    "point_displacement",
+    "xdmf",
+];
+
+/// Chunk length (rows) of the growing `/history` table.
+const HISTORY_CHUNK_ROWS: usize = 64;
+
+/// Writes `<dir>/<title>.h5` and `<dir>/<title>.xdmf`.
+///
+/// Layout (CASE_FORMAT.md, plus the extensions marked +):
+/// ```text
+/// /                                   attrs: title, format = "fvcontact-results", format_version = 1
+/// /mesh/<body>/points                 (n_points×3, initial)
+/// /mesh/<body>/cells/connectivity     (u64), offsets (n_cells+1, u64, from 0), types (u8, VTK codes)
+/// /mesh/<body>/cells/polyhedron_faces/{cell_offsets,offsets,connectivity}   + only with type 42
+/// /mesh/<body>/xdmf/topology          + XDMF Mixed array (i64); attr n_cells = cells shown
+/// /mesh/<body>/xdmf/cell_map          + mesh cell of every shown cell (only with type 42)
+/// /mesh/<body>/patches/<patch>/{offsets,connectivity,xdmf_topology}  + patch faces over body points
+/// /time/<k>                           attrs: time (f64), outer_iterations (u64), residual (f64), converged (bool)
+/// /time/<k>/<body>/points             (n_points×3, current)
+/// /time/<k>/<body>/displacement       (n_cells×3)
+/// /time/<k>/<body>/stress             (n_cells×6: xx,yy,zz,xy,yz,xz)
+/// /time/<k>/<body>/von_mises          + (n_cells)
+/// /time/<k>/<body>/plastic_strain     (n_cells; when given)
+/// /time/<k>/<body>/point_displacement + (n_points×3)
+/// /time/<k>/<body>/xdmf/…             + cell fields repeated per shown cell (only with type 42)
+/// /time/<k>/<body>/<patch>/{face_centres,contact_pressure,contact_traction,gap}
+/// /history                            + (n_rows×n_columns, f64, chunked, growing); attr columns (strings)
+/// ```
+pub struct ResultsWriter {
+    file: File,
+    h5_path: PathBuf,
+    xdmf_path: PathBuf,
+    label: String,
+    title: String,
+    bodies: Vec<BodyState>,
+    /// Last increment written.
+    last_k: Option<usize>,
+    /// XDMF text of every increment written.
+    steps: Vec<String>,
+    history: Option<History>,
+}
+
+struct BodyState {
+    grid: BodyGrid,
+    n_cells: usize,
+    cell_map: Option<Vec<u64>>,
+}
+
+struct History {
+    ds: Dataset,
+    columns: Vec<String>,
+    rows: usize,
+}
+
+/// Attaches the dataset path to an HDF5 error.
+trait At<T> {
+    fn at(self, path: impl FnOnce() -> String) -> Result<T, OutputError>;
+}
+
+impl<T> At<T> for hdf5::Result<T> {
+    fn at(self, path: impl FnOnce() -> String) -> Result<T, OutputError> {
+        self.map_err(|source| OutputError::Hdf5 {
+            path: path(),
+            source,
+        })
+    }
+}
+
+fn check_name(what: &str, name: &str) -> Result<(), OutputError> {
+    if name.is_empty() || name == "." || name == ".." || name.contains(['/', ':', '\0']) {
+        return Err(OutputError::invalid(format!(
+            "{what} '{name}' cannot be used as an HDF5 name (empty, '.', or contains '/' or ':')"
+        )));
+    }
+    Ok(())
+}
+
+/// Creates dataset `name` in `g` with the given shape and data.
+fn put<T: H5Type>(
+    label: &str,
+    g: &Group,
+    gpath: &str,
+    name: &str,
+    data: &[T],
+    shape: &[usize],
+) -> Result<(), OutputError> {
+    let at = || format!("{label}:{gpath}/{name}");
+    debug_assert_eq!(shape.iter().product::<usize>(), data.len());
+    let ds = g.new_dataset::<T>().shape(shape).create(name).at(at)?;
+    if !data.is_empty() {
+        ds.write_raw(data).at(at)?;
+    }
+    Ok(())
+}
+
+fn put_attr<T: H5Type>(
+    label: &str,
+    loc: &Location,
+    gpath: &str,
+    name: &str,
+    value: &T,
+) -> Result<(), OutputError> {
+    let at = || format!("{label}:{gpath} attribute {name}");
+    loc.new_attr::<T>()
+        .create(name)
+        .at(at)?
+        .write_scalar(value)
+        .at(at)
+}
+
+fn vlen(s: &str) -> Result<VarLenUnicode, OutputError> {
+    s.parse()
+        .map_err(|_| OutputError::invalid(format!("string '{s}' cannot be stored in HDF5")))
+}
+
+fn group(label: &str, parent: &Group, gpath: &str, name: &str) -> Result<Group, OutputError> {
+    parent
+        .create_group(name)
+        .at(|| format!("{label}:{gpath}/{name}"))
+}
+
+fn expand<T: Copy>(map: &[u64], v: &[T]) -> Vec<T> {
+    map.iter().map(|&c| v[c as usize]).collect()
+}
+
+fn check_len(what: &str, got: usize, expected: usize) -> Result<(), OutputError> {
+    if got != expected {
+        return Err(OutputError::invalid(format!(
+            "{what} has {got} entries, expected {expected}"
+        )));
+    }
+    Ok(())
+}
+
+impl ResultsWriter {
+    /// Creates (truncating) `<dir>/<title>.h5` with the reference meshes
+    /// under `/mesh/<body>/`, and a `<dir>/<title>.xdmf` showing them; the
+    /// directory is created if needed. Body names must be unique and free
+    /// of `/` and `:`. Every mesh is validated first.
+    pub fn create(
+        dir: &Path,
+        title: &str,
+        bodies: &[(&str, &CellMeshData)],
+    ) -> Result<Self, OutputError> {
+        check_name("title", title)?;
+        if bodies.is_empty() {
+            return Err(OutputError::invalid("no bodies to write"));
+        }
+        let mut states = Vec::with_capacity(bodies.len());
+        let mut topologies = Vec::with_capacity(bodies.len());
+        for (i, (name, mesh)) in bodies.iter().enumerate() {
+            check_name("body name", name)?;
+            if bodies[..i].iter().any(|(n, _)| n == name) {
+                return Err(OutputError::invalid(format!(
+                    "body name '{name}' is used twice"
+                )));
+            }
+            mesh.validate()
+                .map_err(|e| OutputError::invalid(format!("body '{name}': {e}")))?;
+            let vis = xdmf::body_topology(mesh)
+                .map_err(|e| OutputError::invalid(format!("body '{name}': {e}")))?;
+            states.push(BodyState {
+                grid: BodyGrid {
+                    name: name.to_string(),
+                    n_points: mesh.n_points(),
+                    vis_cells: vis.n_cells,
+                    topo_len: vis.topology.len(),
+                    decomposed: vis.cell_map.is_some(),
+                    patches: Vec::new(),
+                },
+                n_cells: mesh.n_cells(),
+                cell_map: vis.cell_map.clone(),
+            });
+            topologies.push(vis);
+        }
+        std::fs::create_dir_all(dir).map_err(|source| OutputError::Io {
+            path: dir.to_path_buf(),
+            source,
+        })?;
+        let h5_path = dir.join(format!("{title}.h5"));
+        let xdmf_path = dir.join(format!("{title}.xdmf"));
+        let label = h5_path.display().to_string();
+        let file = File::with_options()
+            .with_fapl(|p| p.file_locking(false))
+            .create(&h5_path)
+            .at(|| label.clone())?;
+        let l = label.as_str();
+        put_attr(l, &file, "/", "title", &vlen(title)?)?;
+        put_attr(l, &file, "/", "format", &vlen("fvcontact-results")?)?;
+        put_attr(l, &file, "/", "format_version", &1u32)?;
+        let software = concat!("fvc ", env!("CARGO_PKG_VERSION"));
+        put_attr(l, &file, "/", "software", &vlen(software)?)?;
+        let mesh_g = group(l, &file, "", "mesh")?;
+        for ((name, mesh), vis) in bodies.iter().zip(&topologies) {
+            let bp = format!("/mesh/{name}");
+            let bg = group(l, &mesh_g, "/mesh", name)?;
+            put(
+                l,
+                &bg,
+                &bp,
+                "points",
+                mesh.points.as_flattened(),
+                &[mesh.n_points(), 3],
+            )?;
+            let cp = format!("{bp}/cells");
+            let cg = group(l, &bg, &bp, "cells")?;
+            put(
+                l,
+                &cg,
+                &cp,
+                "connectivity",
+                &mesh.connectivity,
+                &[mesh.connectivity.len()],
+            )?;
+            put(l, &cg, &cp, "offsets", &mesh.offsets, &[mesh.offsets.len()])?;
+            put(l, &cg, &cp, "types", &mesh.types, &[mesh.types.len()])?;
+            if let Some(pf) = &mesh.polyhedron_faces {
+                let pp = format!("{cp}/polyhedron_faces");
+                let pg = group(l, &cg, &cp, "polyhedron_faces")?;
+                put(
+                    l,
+                    &pg,
+                    &pp,
+                    "cell_offsets",
+                    &pf.cell_offsets,
+                    &[pf.cell_offsets.len()],
+                )?;
+                put(l, &pg, &pp, "offsets", &pf.offsets, &[pf.offsets.len()])?;
+                put(
+                    l,
+                    &pg,
+                    &pp,
+                    "connectivity",
+                    &pf.connectivity,
+                    &[pf.connectivity.len()],
+                )?;
+            }
+            let xp = format!("{bp}/xdmf");
+            let xg = group(l, &bg, &bp, "xdmf")?;
+            put(
+                l,
+                &xg,
+                &xp,
+                "topology",
+                &vis.topology,
+                &[vis.topology.len()],
+            )?;
+            put_attr(l, &xg, &xp, "n_cells", &(vis.n_cells as u64))?;
+            if let Some(map) = &vis.cell_map {
+                put(l, &xg, &xp, "cell_map", map, &[map.len()])?;
+            }
+            group(l, &bg, &bp, "patches")?;
+        }
+        group(l, &file, "", "time")?;
+        file.flush().at(|| label.clone())?;
+        let w = ResultsWriter {
+            file,
+            h5_path,
+            xdmf_path,
+            label,
+            title: title.to_string(),
+            bodies: states,
+            last_k: None,
+            steps: Vec::new(),
+            history: None,
+        };
+        w.write_xdmf()?;
+        Ok(w)
+    }
+
+    /// Path of the `.h5` file.
+    pub fn h5_path(&self) -> &Path {
+        &self.h5_path
+    }
+
+    /// Path of the `.xdmf` sidecar.
+    pub fn xdmf_path(&self) -> &Path {
+        &self.xdmf_path
+    }
+
+    /// Increments written so far.
+    pub fn increments_written(&self) -> usize {
+        self.steps.len()
+    }
+
+    /// Writes increment `k` (≥ 1, larger than the previous one) as
+    /// `/time/<k>`: its attributes and the fields of every body (all bodies
+    /// given to [`create`](Self::create), each once, any order) and of
+    /// their patches. Everything is checked before anything is written;
+    /// then the file is flushed and the XDMF rewritten to list every
+    /// increment so far.
+    #[allow(clippy::too_many_arguments)]
+    pub fn write_increment(
+        &mut self,
+        k: usize,
+        time: f64,
+        outer_iterations: usize,
+        residual: f64,
+        converged: bool,
+        bodies: &[BodyIncrement],
+    ) -> Result<(), OutputError> {
+        let order = self.check_increment(k, bodies)?;
+        let l = self.label.clone();
+        let l = l.as_str();
+        let tp = format!("/time/{k}");
+        let time_g = self.file.group("time").at(|| format!("{l}:/time"))?;
+        let tg = group(l, &time_g, "/time", &k.to_string())?;
+        put_attr(l, &tg, &tp, "time", &time)?;
+        put_attr(l, &tg, &tp, "outer_iterations", &(outer_iterations as u64))?;
+        put_attr(l, &tg, &tp, "residual", &residual)?;
+        put_attr(l, &tg, &tp, "converged", &converged)?;
+        let mut record = IncrementRecord {
+            k,
+            time,
+            bodies: Vec::with_capacity(self.bodies.len()),
+        };
+        for (bi, &ii) in order.iter().enumerate() {
+            let inc = &bodies[ii];
+            let patches = self.write_body(l, &tg, &tp, bi, inc)?;
+            record.bodies.push((inc.plastic_strain.is_some(), patches));
+        }
+        self.file.flush().at(|| l.to_string())?;
+        self.last_k = Some(k);
+        let grids: Vec<BodyGrid> = self.bodies.iter().map(|b| b.grid.clone()).collect();
+        let step = xdmf::render_step(&format!("{}.h5", self.title), &grids, &record);
+        self.steps.push(step);
+        self.write_xdmf()
+    }
+
+    /// Checks an increment; returns, per writer body, the index in `bodies`.
+    fn check_increment(
+        &self,
+        k: usize,
+        bodies: &[BodyIncrement],
+    ) -> Result<Vec<usize>, OutputError> {
+        if k == 0 {
+            return Err(OutputError::invalid("increments are numbered from 1"));
+        }
+        if let Some(last) = self.last_k {
+            if k <= last {
+                return Err(OutputError::invalid(format!(
+                    "increment {k} written after increment {last}: numbers must increase"
+                )));
+            }
+        }
+        let expected: Vec<&str> = self.bodies.iter().map(|b| b.grid.name.as_str()).collect();
+        let mut order = Vec::with_capacity(self.bodies.len());
+        for name in &expected {
+            let found: Vec<usize> = (0..bodies.len())
+                .filter(|&i| bodies[i].name == *name)
+                .collect();
+            match found.as_slice() {
+                [i] => order.push(*i),
+                [] => {
+                    return Err(OutputError::invalid(format!(
+                        "increment {k}: body '{name}' is missing (expected {expected:?})"
+                    )))
+                }
+                _ => {
+                    return Err(OutputError::invalid(format!(
+                        "increment {k}: body '{name}' given twice"
+                    )))
+                }
+            }
+        }
+        if let Some(b) = bodies.iter().find(|b| !expected.contains(&b.name)) {
+            return Err(OutputError::invalid(format!(
+                "increment {k}: unknown body '{}' (expected {expected:?})",
+                b.name
+            )));
+        }
+        for (state, &i) in self.bodies.iter().zip(&order) {
+            let b = &bodies[i];
+            let (np, nc) = (state.grid.n_points, state.n_cells);
+            let w = |f: &str| format!("increment {k}, body '{}': {f}", b.name);
+            check_len(&w("points"), b.points.len(), np)?;
+            check_len(&w("point_displacement"), b.point_displacement.len(), np)?;
+            check_len(&w("displacement"), b.displacement.len(), nc)?;
+            check_len(&w("stress"), b.stress.len(), nc)?;
+            if let Some(ps) = b.plastic_strain {
+                check_len(&w("plastic_strain"), ps.len(), nc)?;
+            }
+            for (j, p) in b.patches.iter().enumerate() {
+                check_name("patch name", p.name)?;
+                if RESERVED.contains(&p.name) {
+                    return Err(OutputError::invalid(format!(
+                        "{}: patch name '{}' clashes with a body dataset ({RESERVED:?})",
+                        w("patches"),
+                        p.name
+                    )));
+                }
+                if b.patches[..j].iter().any(|q| q.name == p.name) {
+                    return Err(OutputError::invalid(w(&format!(
+                        "patch '{}' given twice",
+                        p.name
+                    ))));
+                }
+                let nf = p.faces.n_faces();
+                let pw = |f: &str| w(&format!("patch '{}' {f}", p.name));
+                check_len(&pw("face_centres"), p.face_centres.len(), nf)?;
+                check_len(&pw("contact_pressure"), p.contact_pressure.len(), nf)?;
+                check_len(&pw("contact_traction"), p.contact_traction.len(), nf)?;
+                check_len(&pw("gap"), p.gap.len(), nf)?;
+                match state.grid.patches.iter().find(|g| g.name == p.name) {
+                    Some(g) => check_len(&pw("faces"), nf, g.n_faces)?,
+                    None => {
+                        xdmf::surface_topology(&p.faces, np)
+                            .map_err(|e| OutputError::invalid(pw(&e.to_string())))?;
+                    }
+                }
+            }
+        }
+        Ok(order)
+    }
+
+    /// Writes `/time/<k>/<body>`; returns the indices of its patches in
+    /// the body's patch list.
+    fn write_body(
+        &mut self,
+        l: &str,
+        tg: &Group,
+        tp: &str,
+        bi: usize,
+        b: &BodyIncrement,
+    ) -> Result<Vec<usize>, OutputError> {
+        let state = &self.bodies[bi];
+        let (np, nc) = (state.grid.n_points, state.n_cells);
+        let bp = format!("{tp}/{}", b.name);
+        let bg = group(l, tg, tp, b.name)?;
+        let vm: Vec<f64> = b.stress.iter().map(von_mises).collect();
+        put(l, &bg, &bp, "points", b.points.as_flattened(), &[np, 3])?;
+        put(
+            l,
+            &bg,
+            &bp,
+            "displacement",
+            b.displacement.as_flattened(),
+            &[nc, 3],
+        )?;
+        put(l, &bg, &bp, "stress", b.stress.as_flattened(), &[nc, 6])?;
+        put(l, &bg, &bp, "von_mises", &vm, &[nc])?;
+        if let Some(ps) = b.plastic_strain {
+            put(l, &bg, &bp, "plastic_strain", ps, &[nc])?;
+        }
+        put(
+            l,
+            &bg,
+            &bp,
+            "point_displacement",
+            b.point_displacement.as_flattened(),
+            &[np, 3],
+        )?;
+        if let Some(map) = &state.cell_map {
+            let n = map.len();
+            let xp = format!("{bp}/xdmf");
+            let xg = group(l, &bg, &bp, "xdmf")?;
+            put(
+                l,
+                &xg,
+                &xp,
+                "displacement",
+                expand(map, b.displacement).as_flattened(),
+                &[n, 3],
+            )?;
+            put(
+                l,
+                &xg,
+                &xp,
+                "stress",
+                expand(map, b.stress).as_flattened(),
+                &[n, 6],
+            )?;
+            put(l, &xg, &xp, "von_mises", &expand(map, &vm), &[n])?;
+            if let Some(ps) = b.plastic_strain {
+                put(l, &xg, &xp, "plastic_strain", &expand(map, ps), &[n])?;
+            }
+        }
+        let mut indices = Vec::with_capacity(b.patches.len());
+        for p in &b.patches {
+            indices.push(self.patch_index(l, bi, p)?);
+            let nf = p.faces.n_faces();
+            let pp = format!("{bp}/{}", p.name);
+            let pg = group(l, &bg, &bp, p.name)?;
+            put(
+                l,
+                &pg,
+                &pp,
+                "face_centres",
+                p.face_centres.as_flattened(),
+                &[nf, 3],
+            )?;
+            put(l, &pg, &pp, "contact_pressure", p.contact_pressure, &[nf])?;
+            put(
+                l,
+                &pg,
+                &pp,
+                "contact_traction",
+                p.contact_traction.as_flattened(),
+                &[nf, 3],
+            )?;
+            put(l, &pg, &pp, "gap", p.gap, &[nf])?;
+        }
+        Ok(indices)
+    }
+
+    /// Index of the patch in the body's list; on first sight writes its
+    /// faces to `/mesh/<body>/patches/<patch>/`.
+    fn patch_index(
+        &mut self,
+        l: &str,
+        bi: usize,
+        p: &PatchIncrement,
+    ) -> Result<usize, OutputError> {
+        let state = &mut self.bodies[bi];
+        if let Some(i) = state.grid.patches.iter().position(|g| g.name == p.name) {
+            return Ok(i);
+        }
+        let topo = xdmf::surface_topology(&p.faces, state.grid.n_points)?;
+        let nf = p.faces.n_faces();
+        let first = p.faces.offsets.first().copied().unwrap_or(0);
+        let offsets: Vec<u64> = p
+            .faces
+            .offsets
+            .iter()
+            .map(|&o| u64::from(o - first))
+            .collect();
+        let last = p.faces.offsets.last().copied().unwrap_or(0);
+        let conn: Vec<u64> = p.faces.connectivity[first as usize..last as usize]
+            .iter()
+            .map(|&q| u64::from(q))
+            .collect();
+        let pp = format!("/mesh/{}/patches", state.grid.name);
+        let patches_g = self.file.group(&pp).at(|| format!("{l}:{pp}"))?;
+        let gp = format!("{pp}/{}", p.name);
+        let g = group(l, &patches_g, &pp, p.name)?;
+        put(l, &g, &gp, "offsets", &offsets, &[offsets.len()])?;
+        put(l, &g, &gp, "connectivity", &conn, &[conn.len()])?;
+        put(l, &g, &gp, "xdmf_topology", &topo, &[topo.len()])?;
+        state.grid.patches.push(PatchGrid {
+            name: p.name.to_string(),
+            n_faces: nf,
+            topo_len: topo.len(),
+        });
+        Ok(state.grid.patches.len() - 1)
+    }
+
+    /// Appends one row to the `/history` table (created on the first call
+    /// with these column names; later calls must pass the same names) and
+    /// flushes the file.
+    pub fn write_history(&mut self, columns: &[&str], row: &[f64]) -> Result<(), OutputError> {
+        if columns.is_empty() || columns.len() != row.len() {
+            return Err(OutputError::invalid(format!(
+                "history: {} columns but {} values",
+                columns.len(),
+                row.len()
+            )));
+        }
+        let l = self.label.clone();
+        let at = || format!("{l}:/history");
+        let n = columns.len();
+        if self.history.is_none() {
+            let ds = self
+                .file
+                .new_dataset::<f64>()
+                .chunk([HISTORY_CHUNK_ROWS, n])
+                .shape([(0, None), (n, Some(n))])
+                .create("history")
+                .at(at)?;
+            let names = columns
+                .iter()
+                .map(|c| vlen(c))
+                .collect::<Result<Vec<_>, _>>()?;
+            ds.new_attr::<VarLenUnicode>()
+                .shape([n])
+                .create("columns")
+                .at(at)?
+                .write_raw(&names)
+                .at(at)?;
+            self.history = Some(History {
+                ds,
+                columns: columns.iter().map(|c| c.to_string()).collect(),
+                rows: 0,
+            });
+        }
+        let Some(h) = &mut self.history else {
+            unreachable!("history created above")
+        };
+        if h.columns
+            .iter()
+            .map(String::as_str)
+            .ne(columns.iter().copied())
+        {
+            return Err(OutputError::invalid(format!(
+                "history: columns {columns:?} differ from the first row's {:?}",
+                h.columns
+            )));
+        }
+        h.ds.resize([h.rows + 1, n]).at(at)?;
+        h.ds.write_slice(row, (h.rows, ..)).at(at)?;
+        h.rows += 1;
+        self.file.flush().at(at)
+    }
+
+    /// Flushes and closes the file, reporting errors that dropping the
+    /// writer would swallow.
+    pub fn close(self) -> Result<(), OutputError> {
+        let label = self.label.clone();
+        self.file.flush().at(|| label.clone())?;
+        drop(self.history);
+        self.file.close().at(|| label)
+    }
+
+    /// Rewrites the XDMF: temporary file, then rename.
+    fn write_xdmf(&self) -> Result<(), OutputError> {
+        let grids: Vec<BodyGrid> = self.bodies.iter().map(|b| b.grid.clone()).collect();
+        let h5_name = format!("{}.h5", self.title);
+        let text = xdmf::render(&h5_name, &self.title, &grids, &self.steps);
+        let tmp = self.xdmf_path.with_extension("xdmf.tmp");
+        let io = |source| OutputError::Io {
+            path: self.xdmf_path.clone(),
+            source,
+        };
+        std::fs::write(&tmp, text).map_err(io)?;
+        std::fs::rename(&tmp, &self.xdmf_path).map_err(io)
+    }
+}

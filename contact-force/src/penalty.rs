@@ -160,7 +160,9 @@ impl PenaltyParams {
     }
 
     /// The penalty parameters of eqs. 4.4a and 4.4b,
-    /// `ε_n = f_n K̄ Γ̄² / Ω̄`, `ε_t = f_t Ḡ Γ̄² / Ω̄`, with the averages taken
+    /// `ε_n = f_n K̄ Γ̄² / Ω̄ / Γ̄ = f_n K̄ Γ̄ / Ω̄`, `ε_t = f_t Ḡ Γ̄ / Ω̄` (the
+    /// face stiffness of eqs. 4.4a/b divided by the face area, so that
+    /// pressure = ε_n × penetration is dimensionally right), with the averages taken
     /// over the faces of the deformable surfaces (`None` marks a rigid
     /// surface, which contributes nothing): Γ̄ the mean face area, Ω̄ the
     /// mean owner-cell volume (`cell_length · |Γ|`), K̄ and Ḡ the mean
@@ -220,7 +222,10 @@ impl PenaltyParams {
         }
         let inv = 1.0 / n as Real;
         let (area, volume, k, g) = (area * inv, volume * inv, k * inv, g * inv);
-        let geometric = area * area / volume;
+        // Eq. 4.4a/b give K Γ²/Ω, a face stiffness (force per unit
+        // penetration, N/m); the traction law needs it per unit face area,
+        // K Γ/Ω = K/h̄ (Pa/m), which is what is returned here.
+        let geometric = area / volume;
         ContactLaw::new(
             self.penalty_scale * k * geometric,
             self.tangential_penalty_scale * g * geometric,
@@ -248,7 +253,7 @@ mod tests {
 
     #[test]
     fn penalty_estimate_4_4() {
-        // 4×2 faces of 0.25×0.5 on top of cells 0.25×0.5×0.1: Γ²/Ω = A/h = 1.25/0.1
+        // 4×2 faces of 0.25×0.5 on top of cells 0.25×0.5×0.1: Γ/Ω = 1/h = 1/0.1
         let m = box_mesh(
             Vector::zeros(),
             Vector::new(1.0, 1.0, 0.1),
@@ -270,7 +275,7 @@ mod tests {
             ..Default::default()
         };
         let law = p.contact_law(&s, Some(&mat), &s, None).unwrap();
-        let geo = 0.125 / 0.1;
+        let geo = 1.0 / 0.1;
         assert!((law.normal_penalty / (2.0 * 3.0e9 * geo) - 1.0).abs() < 1e-14);
         assert!((law.tangential_penalty / (0.5 * 1.0e9 * geo) - 1.0).abs() < 1e-14);
         assert_eq!(law.friction, 0.3);

@@ -48,10 +48,11 @@ fn outer_iteration(c: &mut Criterion) {
         panic!("{e}");
     }
     // a few iterations first so that the linear solves see a typical residual
+    let mut contacts = solver_app::contact_coupling::ContactSet::default();
     solver.begin_increment(&bodies);
     let mut linear = 0;
     for _ in 0..10 {
-        if let Ok((_, l)) = solver.outer_iteration(&mut bodies) {
+        if let Ok((_, l)) = solver.outer_iteration(&mut bodies, &mut contacts) {
             linear += l;
         }
     }
@@ -63,7 +64,7 @@ fn outer_iteration(c: &mut Criterion) {
     let mut group = c.benchmark_group("segregated");
     group.sample_size(10);
     group.bench_function("outer_iteration_box64", |b| {
-        b.iter(|| solver.outer_iteration(&mut bodies))
+        b.iter(|| solver.outer_iteration(&mut bodies, &mut contacts))
     });
     group.finish();
 }

@@ -12,6 +12,7 @@
 
 pub mod case;
 pub mod check;
+pub mod contact_coupling;
 pub mod mesh_loading;
 pub mod model;
 pub mod results;

@@ -28,6 +28,9 @@ pub struct Body {
     pub initial_face_centres: Vec<Vector>,
     /// The condition spec of every patch (`None` = traction-free).
     pub patch_specs: Vec<Option<BoundarySpec>>,
+    /// Motion of a rigid body at the current time: translation, rotation
+    /// and its origin (from its first displacement or rigid-motion patch).
+    pub rigid_motion: (Vector, Tensor, Vector),
 }
 
 impl Body {
@@ -47,9 +50,36 @@ impl Body {
             })
     }
 
+    /// Displacement of a point at initial position `x0` of a rigid body.
+    pub fn rigid_displacement(&self, x0: &Vector) -> Vector {
+        let (tr, rot, origin) = &self.rigid_motion;
+        tr + (rot - Tensor::identity()) * (x0 - origin)
+    }
+
     /// Sets the per-face values of every condition at time `t` (eq. 3.19, 3.21).
     pub fn refresh_conditions(&mut self, t: f64) {
         let ni = self.mesh.n_internal_faces();
+        if self.rigid {
+            self.rigid_motion = (Vector::zeros(), Tensor::identity(), Vector::zeros());
+            for spec in self.patch_specs.iter().flatten() {
+                match spec {
+                    BoundarySpec::Displacement { value } => {
+                        self.rigid_motion.0 = Vector::from(value.at(t));
+                        break;
+                    }
+                    BoundarySpec::RigidMotion {
+                        translation,
+                        rotation,
+                    } => {
+                        self.rigid_motion =
+                            rigid_motion_at(translation.as_ref(), rotation.as_ref(), t);
+                        break;
+                    }
+                    _ => {}
+                }
+            }
+            return;
+        }
         for (pi, spec) in self.patch_specs.iter().enumerate() {
             let patch = &self.mesh.patches[pi];
             let cond = &mut self.momentum.conditions[pi];
@@ -65,21 +95,8 @@ impl Body {
                     }),
                     PatchCondition::Displacement(v),
                 ) => {
-                    let tr = translation
-                        .as_ref()
-                        .map(|x| Vector::from(x.at(t)))
-                        .unwrap_or_else(Vector::zeros);
-                    let (rot, origin) = match rotation {
-                        Some(r) => (
-                            *nalgebra::Rotation3::from_axis_angle(
-                                &nalgebra::Unit::new_normalize(Vector::from(r.axis)),
-                                r.angle.at(t),
-                            )
-                            .matrix(),
-                            Vector::from(r.origin),
-                        ),
-                        None => (Tensor::identity(), Vector::zeros()),
-                    };
+                    let (tr, rot, origin) =
+                        rigid_motion_at(translation.as_ref(), rotation.as_ref(), t);
                     for (i, f) in patch.faces().enumerate() {
                         let x0 = self.initial_face_centres[f - ni];
                         v[i] = tr + (rot - Tensor::identity()) * (x0 - origin);
@@ -108,6 +125,29 @@ impl Body {
     }
 }
 
+/// Translation, rotation tensor and rotation origin of a rigid motion at time `t`.
+fn rigid_motion_at(
+    translation: Option<&crate::case::VectorValue>,
+    rotation: Option<&crate::case::Rotation>,
+    t: f64,
+) -> (Vector, Tensor, Vector) {
+    let tr = translation
+        .map(|x| Vector::from(x.at(t)))
+        .unwrap_or_else(Vector::zeros);
+    match rotation {
+        Some(r) => (
+            tr,
+            *nalgebra::Rotation3::from_axis_angle(
+                &nalgebra::Unit::new_normalize(Vector::from(r.axis)),
+                r.angle.at(t),
+            )
+            .matrix(),
+            Vector::from(r.origin),
+        ),
+        None => (tr, Tensor::identity(), Vector::zeros()),
+    }
+}
+
 /// Builds the bodies of a case from their specs and loaded meshes; checks
 /// patch names and the features this build supports.
 pub fn build_bodies(case: &Case, meshes: Vec<PolyMesh>) -> Result<Vec<Body>, InputError> {
@@ -122,12 +162,6 @@ pub fn build_bodies(case: &Case, meshes: Vec<PolyMesh>) -> Result<Vec<Body>, Inp
         return Err(src.error(
             "analysis.strain",
             "strain = \"large\" (updated Lagrangian) is not available yet in this version; use \"small\"",
-        ));
-    }
-    if !case.contacts.is_empty() {
-        return Err(src.error(
-            "contact[0]",
-            "contact ([[contact]]) is not available yet in this version: the contact algorithms land with the contact-force issue; remove the [[contact]] tables to solve the bodies without contact",
         ));
     }
     let mut bodies = Vec::with_capacity(meshes.len());
@@ -245,5 +279,6 @@ fn build_body(
         offset,
         initial_face_centres,
         patch_specs,
+        rigid_motion: (Vector::zeros(), Tensor::identity(), Vector::zeros()),
     })
 }

@@ -6,6 +6,7 @@ use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
+use crate::contact_coupling::ContactSet;
 use crate::model::Body;
 use fv_mesh::Vector;
 
@@ -66,11 +67,14 @@ pub fn reported_patches(bodies: &[Body]) -> Vec<(usize, usize, String)> {
 
 impl History {
     /// Creates the file and writes the header.
-    pub fn create(dir: &Path, bodies: &[Body]) -> std::io::Result<Self> {
+    pub fn create(dir: &Path, bodies: &[Body], contacts: &ContactSet) -> std::io::Result<Self> {
         let mut out = BufWriter::new(File::create(dir.join("history.csv"))?);
         write!(out, "time,outer_iterations,residual")?;
         for (_, _, name) in reported_patches(bodies) {
             write!(out, ",{name}:Fx,{name}:Fy,{name}:Fz")?;
+        }
+        for c in &contacts.interfaces {
+            write!(out, ",{}:normal_force", c.slave_name)?;
         }
         writeln!(out)?;
         out.flush()?;
@@ -84,11 +88,15 @@ impl History {
         outer: usize,
         residual: f64,
         bodies: &[Body],
+        contacts: &ContactSet,
     ) -> std::io::Result<()> {
         write!(self.out, "{time:.10e},{outer},{residual:.6e}")?;
         for (bi, p, _) in reported_patches(bodies) {
             let f = patch_reaction(&bodies[bi], p);
             write!(self.out, ",{:.10e},{:.10e},{:.10e}", f.x, f.y, f.z)?;
+        }
+        for c in &contacts.interfaces {
+            write!(self.out, ",{:.10e}", c.stats.normal_force)?;
         }
         writeln!(self.out)?;
         self.out.flush()
@@ -127,7 +135,12 @@ pub struct Summary {
 }
 
 /// Writes `summary.json` (atomically: temp file + rename).
-pub fn write_summary(dir: &Path, s: &Summary, bodies: &[Body]) -> std::io::Result<PathBuf> {
+pub fn write_summary(
+    dir: &Path,
+    s: &Summary,
+    bodies: &[Body],
+    contacts: &ContactSet,
+) -> std::io::Result<PathBuf> {
     let mut patches = serde_json::Map::new();
     for (bi, p, name) in reported_patches(bodies) {
         let b = &bodies[bi];
@@ -147,7 +160,18 @@ pub fn write_summary(dir: &Path, s: &Summary, bodies: &[Body]) -> std::io::Resul
         "wall_seconds": s.wall_seconds,
         "cells": s.cells,
         "patches": patches,
-        "contacts": [],
+        "contacts": contacts.interfaces.iter().map(|c| {
+            let t = c.stats.tangential_force;
+            serde_json::json!({
+                "master": c.master_name,
+                "slave": c.slave_name,
+                "normal_force": c.stats.normal_force,
+                "tangential_force": [t.x, t.y, t.z],
+                "max_pressure": c.stats.max_pressure,
+                "contact_area": c.stats.contact_area,
+                "max_penetration": c.stats.max_penetration,
+            })
+        }).collect::<Vec<_>>(),
     });
     if let Some(reason) = &s.failure {
         v["failure"] = serde_json::Value::String(reason.clone());

@@ -4,6 +4,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use crate::case::{Case, InputError, OnNonConvergence};
+use crate::contact_coupling::ContactSet;
 use crate::mesh_loading::load_mesh;
 use crate::model::{build_bodies, Body};
 use crate::results::{write_summary, History, RunLog, Summary};
@@ -28,6 +29,8 @@ pub struct RunOutcome {
     pub failure: Option<String>,
     /// The bodies with their final fields.
     pub bodies: Vec<Body>,
+    /// The contact pairs with their final tractions.
+    pub contacts: ContactSet,
     /// Summary figures.
     pub summary: Summary,
     /// Results directory (`None` with `no_files`).
@@ -58,6 +61,7 @@ pub fn set_up(case: &Case) -> Result<Vec<Body>, InputError> {
 pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> {
     let start = Instant::now();
     let mut bodies = set_up(case)?;
+    let mut contacts = ContactSet::new(case, &bodies)?;
     let dir = if opts.no_files {
         None
     } else {
@@ -76,7 +80,7 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
         None => RunLog::none(),
     };
     let mut history = match &dir {
-        Some(d) => Some(History::create(d, &bodies).map_err(io_err)?),
+        Some(d) => Some(History::create(d, &bodies, &contacts).map_err(io_err)?),
         None => None,
     };
     let cells: usize = bodies.iter().map(|b| b.mesh.n_cells).sum();
@@ -133,7 +137,7 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
         for b in bodies.iter_mut() {
             b.refresh_conditions(t);
         }
-        let result = solver.solve_increment(&mut bodies, |outer, res| {
+        let result = solver.solve_increment(&mut bodies, &mut contacts, |outer, res| {
             if let Some(pb) = &bar {
                 if outer % 10 == 0 {
                     pb.set_message(format!("outer {outer} residual {res:.2e}"));
@@ -161,7 +165,7 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
                     log.info(&line);
                 }
                 if let Some(h) = &mut history {
-                    h.append(t, info.outer_iterations, info.residual, &bodies)
+                    h.append(t, info.outer_iterations, info.residual, &bodies, &contacts)
                         .map_err(io_err)?;
                 }
                 if !info.converged {
@@ -202,13 +206,14 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
         ));
     }
     if let Some(d) = &dir {
-        write_summary(d, &summary, &bodies).map_err(io_err)?;
+        write_summary(d, &summary, &bodies, &contacts).map_err(io_err)?;
         log.info(&format!("results in {}", d.display()));
     }
     Ok(RunOutcome {
         converged: failure.is_none(),
         failure,
         bodies,
+        contacts,
         summary,
         directory: dir,
     })

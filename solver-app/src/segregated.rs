@@ -2,6 +2,7 @@
 //! system for all deformable bodies, outer (Picard) iterations, and one
 //! linear solve per displacement component.
 use crate::case::{LinearMethod, LinearSettings, SolverSettings};
+use crate::contact_coupling::ContactSet;
 use crate::model::Body;
 use fv_discretise::{CsrMatrix, FaceSlots, LinearSolver, LinearSolverError, MomentumParams};
 use fv_mesh::Vector;
@@ -28,6 +29,9 @@ pub enum SolveError {
     /// NaN or infinity appeared in the solution.
     #[error("the solution diverged (non-finite displacement) in outer iteration {0}")]
     Diverged(usize),
+    /// The contact update failed.
+    #[error("{0}")]
+    Contact(String),
     /// The matrix is singular: a body cannot carry load in some direction.
     #[error("body '{body}' is not held in the {axis} direction: give it a displacement, symmetry or normal-displacement condition (no rigid-body motion can be solved statically)")]
     Unconstrained {
@@ -261,8 +265,15 @@ impl SegregatedSolver {
     /// stress and force residual of every body, one linear solve per
     /// component, under-relaxed update. Returns the relative residual
     /// ‖δ‖/‖u − u_start‖ and the linear iterations used. Allocates nothing.
-    pub fn outer_iteration(&mut self, bodies: &mut [Body]) -> Result<(f64, usize), SolveError> {
+    pub fn outer_iteration(
+        &mut self,
+        bodies: &mut [Body],
+        contacts: &mut ContactSet,
+    ) -> Result<(f64, usize), SolveError> {
         let mut linear_iterations = 0;
+        if !contacts.is_empty() {
+            contacts.update(bodies).map_err(SolveError::Contact)?;
+        }
         for b in bodies.iter_mut().filter(|b| !b.rigid) {
             let m = &mut b.momentum;
             m.update_boundary_values(&b.mesh, &b.geom, b.material.as_ref());
@@ -326,15 +337,18 @@ impl SegregatedSolver {
     pub fn solve_increment(
         &mut self,
         bodies: &mut [Body],
+        contacts: &mut ContactSet,
         mut on_iteration: impl FnMut(usize, f64),
     ) -> Result<IncrementInfo, SolveError> {
         self.begin_increment(bodies);
         let mut info = IncrementInfo::default();
         for outer in 1..=self.max_outer {
-            let (residual, linear) = self.outer_iteration(bodies).map_err(|e| match e {
-                SolveError::Diverged(_) => SolveError::Diverged(outer),
-                e => e,
-            })?;
+            let (residual, linear) =
+                self.outer_iteration(bodies, contacts)
+                    .map_err(|e| match e {
+                        SolveError::Diverged(_) => SolveError::Diverged(outer),
+                        e => e,
+                    })?;
             info.linear_iterations += linear;
             info.outer_iterations = outer;
             info.residual = residual;
@@ -345,6 +359,9 @@ impl SegregatedSolver {
             }
         }
         self.update_fields(bodies);
+        if info.converged {
+            contacts.commit_increment();
+        }
         Ok(info)
     }
 }

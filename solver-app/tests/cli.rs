@@ -200,7 +200,7 @@ fn ten_malformed_inputs_exit_2_with_precise_messages() {
 }
 
 #[test]
-fn contact_is_refused_clearly_until_available() {
+fn implicit_contact_coupling_is_refused_clearly_until_available() {
     let dir = tempfile::tempdir().unwrap();
     let two = GOOD.to_string()
         + r#"
@@ -211,12 +211,27 @@ mesh = { generator = "box", min = [0, 1, 0], max = [1, 1.2, 1], cells = [2, 1, 2
 material = { model = "linear-elastic", E = 200.0, nu = 0.3 }
 [[contact]]
 master = "plate/ymin"
-slave = "block/ymax"
+slave = "block/xmax"
+coupling = "implicit"
 "#;
     expect_input_error(
         dir.path(),
         two.as_bytes(),
-        &["contact", "not available yet"],
+        &["case.toml:26", "contact[0].coupling", "not available yet"],
+    );
+    // a contact patch may not carry a boundary condition of its own
+    let own = two.replace(
+        "slave = \"block/xmax\"\ncoupling = \"implicit\"",
+        "slave = \"block/ymax\"",
+    );
+    expect_input_error(
+        dir.path(),
+        own.as_bytes(),
+        &[
+            "contact[0].slave",
+            "block/ymax",
+            "must not have a boundary condition",
+        ],
     );
 }
 

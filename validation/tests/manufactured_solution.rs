@@ -110,7 +110,9 @@ value = [0, 0, 0]
     solver
         .assemble_and_factorise(&bodies, &case.solver.linear)
         .unwrap();
-    let info = solver.solve_increment(&mut bodies, |_, _| {}).unwrap();
+    let info = solver
+        .solve_increment(&mut bodies, &mut Default::default(), |_, _| {})
+        .unwrap();
     assert!(info.converged, "not converged: {info:?}");
     let b = &bodies[0];
     let (mut num, mut den) = (0.0, 0.0);

@@ -50,7 +50,9 @@ value = [10.0, 0.0, 0.0]
     solver
         .assemble_and_factorise(&bodies, &case.solver.linear)
         .unwrap();
-    let info = solver.solve_increment(&mut bodies, |_, _| {}).unwrap();
+    let info = solver
+        .solve_increment(&mut bodies, &mut Default::default(), |_, _| {})
+        .unwrap();
     assert!(info.converged);
     let mut max_dev = 0.0f64;
     for s in &bodies[0].momentum.sigma {

@@ -93,17 +93,6 @@ impl CandidatePairs {
         self.offsets.push(self.slaves.len() as u32);
     }
 
-    /// Appends empty rows until the set has `n_master` rows.
-    pub(crate) fn finish(&mut self, n_master: usize) {
-        let last = self.offsets.last().copied().unwrap_or(0);
-        if self.offsets.is_empty() {
-            self.offsets.push(0);
-        }
-        while self.offsets.len() < n_master + 1 {
-            self.offsets.push(last);
-        }
-    }
-
     /// Makes `self` a copy of `other`, reusing the buffers.
     pub fn copy_from(&mut self, other: &CandidatePairs) {
         self.offsets.clear();
@@ -160,7 +149,8 @@ mod tests {
         q.push(1);
         q.push(9);
         q.end_row();
-        q.finish(4);
+        q.end_row();
+        q.end_row();
         assert_eq!(q.slaves_of(1), &[1, 9]);
         assert_eq!(q.n_master(), 4);
         let mut r = CandidatePairs::new();

@@ -33,6 +33,8 @@ impl FreezeState {
                 obb_tests: 0,
                 polygon_tests: 0,
                 seed_searches: 0,
+                repairs: 0,
+                front_tests: 0,
                 ..self.last_stats
             });
         }

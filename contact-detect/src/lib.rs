@@ -57,6 +57,7 @@ mod min_area_rectangle;
 mod obb;
 mod params;
 mod sat_obb_obb;
+mod sat_obb_prism;
 mod sat_polygon_polygon;
 mod seed_search;
 mod surface_check;
@@ -76,6 +77,7 @@ pub use min_area_rectangle::{min_area_rectangle, Rectangle};
 pub use obb::{face_obb, plane_basis, FaceBoxSize, Obb, ObbScratch};
 pub use params::DetectParams;
 pub use sat_obb_obb::obb_overlap;
+pub use sat_obb_prism::obb_meets_prism;
 pub use sat_polygon_polygon::polygons_overlap;
 pub use seed_search::SeedSearch;
 pub use surface_check::check_surface;
@@ -100,8 +102,13 @@ pub struct DetectionStats {
     pub obb_tests: u64,
     /// Local-phase polygon tests (2-D SAT).
     pub polygon_tests: u64,
+    /// Front tests (box against a master face's prism; advancing front only).
+    pub front_tests: u64,
     /// Brute-force seed searches (advancing front only).
     pub seed_searches: usize,
+    /// Fronts grown again from a neighbour's front (advancing front only;
+    /// see [`AdvancingFront`]).
+    pub repairs: usize,
     /// Pairs found.
     pub pairs: usize,
     /// Whether the pairs were reused without search ([`Detector::set_frozen`]).

@@ -4,6 +4,7 @@ use crate::contact_zone::ContactZone;
 use crate::convex_hull_2d::V2;
 use crate::face_boxes::{mean_face_size, FaceBoxes};
 use crate::sat_obb_obb::obb_overlap;
+use crate::sat_obb_prism::obb_meets_prism;
 use crate::sat_polygon_polygon::polygons_overlap;
 use crate::surface_check::check_surface;
 use crate::{DetectError, DetectParams, DetectionStats};
@@ -65,16 +66,45 @@ impl Workspace {
         }
     }
 
-    /// Global phase for `(m, s)`: the AABBs of the OBBs meet, then the OBBs
-    /// overlap (3-D SAT). Both faces must be valid (invalid ones have empty AABBs).
+    /// Whether the AABBs of the OBBs of `(m, s)` meet (necessary for a pair;
+    /// invalid faces have empty AABBs).
     #[inline]
-    pub fn global_test(&self, m: usize, s: usize, stats: &mut DetectionStats) -> bool {
+    pub fn aabb_test(&self, m: usize, s: usize, stats: &mut DetectionStats) -> bool {
         stats.aabb_tests += 1;
-        if !self.master.aabb[m].intersects(&self.slave.aabb[s]) {
-            return false;
-        }
+        self.master.aabb[m].intersects(&self.slave.aabb[s])
+    }
+
+    /// Whether the OBBs of `(m, s)` overlap (3-D SAT).
+    #[inline]
+    pub fn obb_test(&self, m: usize, s: usize, stats: &mut DetectionStats) -> bool {
         stats.obb_tests += 1;
         obb_overlap(&self.master.obb[m], &self.slave.obb[s])
+    }
+
+    /// Front condition of the advancing front: valid slave face `s`,
+    /// projected onto the plane of master face `m`, overlaps its polygon
+    /// (the local phase alone, blind to the distance along the normal);
+    /// the box-against-prism test rejects most faces first.
+    #[inline]
+    pub fn front_test(
+        &self,
+        slave: &Surface,
+        m: usize,
+        s: usize,
+        stats: &mut DetectionStats,
+    ) -> bool {
+        stats.front_tests += 1;
+        let slack = self.params.touch_tolerance * self.master.scale[m];
+        self.slave.valid[s]
+            && obb_meets_prism(&self.master.obb[m], &self.slave.obb[s], slack)
+            && self.local_test(slave, m, s, stats)
+    }
+
+    /// Global phase for `(m, s)`: the AABBs of the OBBs meet, then the OBBs
+    /// overlap (3-D SAT).
+    #[inline]
+    pub fn global_test(&self, m: usize, s: usize, stats: &mut DetectionStats) -> bool {
+        self.aabb_test(m, s, stats) && self.obb_test(m, s, stats)
     }
 
     /// Local phase for `(m, s)`: slave polygon projected onto the plane of

@@ -312,3 +312,99 @@ fn estimated_height_is_the_mean_face_size() {
     assert!((st.mean_cell_height - expect).abs() < 1e-12);
     assert_eq!(st.master_faces_in_zone, 16);
 }
+
+/// Configurations on which earlier versions of the advancing front missed
+/// pairs (a slave sheet dipping out of the band, border triangles whose
+/// boxes overhang the border, a border bay across a master face).
+#[test]
+fn regression_cases_of_the_advancing_front() {
+    struct R {
+        master: ([usize; 2], bool, Placement),
+        slave: ([usize; 2], bool, Placement),
+        h: f64,
+    }
+    let cases = [
+        R {
+            master: ([2, 2], false, Placement::default()),
+            slave: (
+                [5, 8],
+                true,
+                Placement {
+                    curvature: 0.998,
+                    jitter: 0.149,
+                    jitter_z: 0.0199,
+                    seed: 54367177323342364,
+                    shift: Vector::new(0.0, 0.0, -0.8238),
+                    ..Default::default()
+                },
+            ),
+            h: 0.3671,
+        },
+        R {
+            master: ([4, 2], false, Placement::default()),
+            slave: (
+                [6, 6],
+                true,
+                Placement {
+                    rotate: -0.5208,
+                    tilt: 0.2005,
+                    curvature: 0.9522,
+                    jitter: 0.0731,
+                    seed: 11516131871284748756,
+                    shift: Vector::new(0.2269, 0.5759, 0.0),
+                    ..Default::default()
+                },
+            ),
+            h: 0.2205,
+        },
+        R {
+            master: (
+                [5, 6],
+                true,
+                Placement {
+                    jitter: 0.03695,
+                    jitter_z: 0.006892,
+                    seed: 15549120581714013029,
+                    ..Default::default()
+                },
+            ),
+            slave: (
+                [8, 4],
+                false,
+                Placement {
+                    rotate: 0.7027,
+                    tilt: -0.1331,
+                    curvature: -0.5033,
+                    jitter_z: 0.02584,
+                    seed: 398579457099360304,
+                    shift: Vector::new(-0.5128, 0.3161, 0.0),
+                    ..Default::default()
+                },
+            ),
+            h: 0.05,
+        },
+    ];
+    for (k, c) in cases.iter().enumerate() {
+        let p = params(c.h);
+        let master = Patch::new(c.master.0, c.master.1, true, &c.master.2);
+        let mut slave = Patch::new(c.slave.0, c.slave.1, false, &c.slave.2);
+        let reference = all_agree(&master.surface, &slave.surface, p);
+        assert!(reference.n_pairs() > 0, "case {k}");
+        all_agree(&slave.surface, &master.surface, p);
+        // warm after a small motion
+        let mut af = AdvancingFront::new(p);
+        let mut out = CandidatePairs::new();
+        af.detect(&master.surface, &slave.surface, &mut out)
+            .unwrap();
+        let mut moved = c.slave.2;
+        moved.shift += Vector::new(0.01, -0.02, 0.002);
+        slave.place(&moved);
+        af.detect(&master.surface, &slave.surface, &mut out)
+            .unwrap();
+        let mut bf = CandidatePairs::new();
+        BruteForce::new(p)
+            .detect(&master.surface, &slave.surface, &mut bf)
+            .unwrap();
+        assert_eq!(out, bf, "case {k} after motion");
+    }
+}

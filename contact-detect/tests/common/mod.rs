@@ -53,7 +53,8 @@ pub struct Placement {
     pub shift: Vector,
     /// Curvature: z += curvature · r² / 2 about the square centre.
     pub curvature: f64,
-    /// In-plane jitter of each point, as a fraction of the grid spacing (≤ 0.15 keeps quads convex).
+    /// In-plane jitter of each point, as a fraction of the grid spacing (≤ 0.15 keeps
+    /// quads convex); border points move along the border only.
     pub jitter: f64,
     /// Out-of-plane jitter of each point, absolute.
     pub jitter_z: f64,
@@ -87,8 +88,14 @@ pub fn placed_points(reference: &[Vector], spacing: f64, pl: &Placement) -> Vec<
         .map(|(i, x)| {
             let i = i as u64;
             let mut r = x - c;
-            r.x += pl.jitter * spacing * hash_unit(pl.seed, i, 0);
-            r.y += pl.jitter * spacing * hash_unit(pl.seed, i, 1);
+            // border points move along the border only: the patch stays a square
+            let fixed = |v: f64| v.abs() < 1e-12 || (v - 1.0).abs() < 1e-12;
+            if !fixed(x.x) {
+                r.x += pl.jitter * spacing * hash_unit(pl.seed, i, 0);
+            }
+            if !fixed(x.y) {
+                r.y += pl.jitter * spacing * hash_unit(pl.seed, i, 1);
+            }
             r.z += pl.jitter_z * hash_unit(pl.seed, i, 2);
             r.z += 0.5 * pl.curvature * (r.x * r.x + r.y * r.y);
             let r = Vector::new(cr * r.x - sr * r.y, sr * r.x + cr * r.y, r.z);

@@ -13,8 +13,10 @@
 pub mod case;
 pub mod check;
 pub mod contact_coupling;
+pub mod field_output;
 pub mod mesh_loading;
 pub mod model;
+pub mod output;
 pub mod results;
 pub mod run;
 pub mod segregated;

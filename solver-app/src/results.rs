@@ -65,38 +65,60 @@ pub fn reported_patches(bodies: &[Body]) -> Vec<(usize, usize, String)> {
     v
 }
 
+/// Column names of the history table (CSV header and `/history` columns).
+pub fn history_columns(bodies: &[Body], contacts: &ContactSet) -> Vec<String> {
+    let mut cols: Vec<String> = ["time", "outer_iterations", "residual"]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+    for (_, _, name) in reported_patches(bodies) {
+        for c in ["Fx", "Fy", "Fz"] {
+            cols.push(format!("{name}:{c}"));
+        }
+    }
+    for c in &contacts.interfaces {
+        cols.push(format!("{}:normal_force", c.slave_name));
+    }
+    cols
+}
+
+/// One history row, in the order of [`history_columns`].
+pub fn history_row(
+    time: f64,
+    outer: usize,
+    residual: f64,
+    bodies: &[Body],
+    contacts: &ContactSet,
+) -> Vec<f64> {
+    let mut row = vec![time, outer as f64, residual];
+    for (bi, p, _) in reported_patches(bodies) {
+        let f = patch_reaction(&bodies[bi], p);
+        row.extend([f.x, f.y, f.z]);
+    }
+    for c in &contacts.interfaces {
+        row.push(c.stats.normal_force);
+    }
+    row
+}
+
 impl History {
     /// Creates the file and writes the header.
     pub fn create(dir: &Path, bodies: &[Body], contacts: &ContactSet) -> std::io::Result<Self> {
         let mut out = BufWriter::new(File::create(dir.join("history.csv"))?);
-        write!(out, "time,outer_iterations,residual")?;
-        for (_, _, name) in reported_patches(bodies) {
-            write!(out, ",{name}:Fx,{name}:Fy,{name}:Fz")?;
-        }
-        for c in &contacts.interfaces {
-            write!(out, ",{}:normal_force", c.slave_name)?;
-        }
-        writeln!(out)?;
+        writeln!(out, "{}", history_columns(bodies, contacts).join(","))?;
         out.flush()?;
         Ok(History { out })
     }
 
-    /// Appends one row and flushes it.
-    pub fn append(
-        &mut self,
-        time: f64,
-        outer: usize,
-        residual: f64,
-        bodies: &[Body],
-        contacts: &ContactSet,
-    ) -> std::io::Result<()> {
-        write!(self.out, "{time:.10e},{outer},{residual:.6e}")?;
-        for (bi, p, _) in reported_patches(bodies) {
-            let f = patch_reaction(&bodies[bi], p);
-            write!(self.out, ",{:.10e},{:.10e},{:.10e}", f.x, f.y, f.z)?;
-        }
-        for c in &contacts.interfaces {
-            write!(self.out, ",{:.10e}", c.stats.normal_force)?;
+    /// Appends one row (see [`history_row`]) and flushes it.
+    pub fn append(&mut self, row: &[f64]) -> std::io::Result<()> {
+        for (i, v) in row.iter().enumerate() {
+            let sep = if i == 0 { "" } else { "," };
+            if i == 1 {
+                write!(self.out, "{sep}{}", *v as u64)?;
+            } else {
+                write!(self.out, "{sep}{v:.10e}")?;
+            }
         }
         writeln!(self.out)?;
         self.out.flush()

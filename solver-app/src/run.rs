@@ -5,9 +5,10 @@ use std::time::Instant;
 
 use crate::case::{Case, InputError, OnNonConvergence};
 use crate::contact_coupling::ContactSet;
+use crate::field_output::FieldOutput;
 use crate::mesh_loading::load_mesh;
 use crate::model::{build_bodies, Body};
-use crate::results::{write_summary, History, RunLog, Summary};
+use crate::results::{history_columns, history_row, write_summary, History, RunLog, Summary};
 use crate::segregated::SegregatedSolver;
 
 /// Command-line options of `fvc run`.
@@ -83,6 +84,13 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
         Some(d) => Some(History::create(d, &bodies, &contacts).map_err(io_err)?),
         None => None,
     };
+    let out_err = |e: crate::output::OutputError| RunError::Output(e.to_string());
+    let mut fields = match &dir {
+        Some(d) => Some(FieldOutput::create(d, &case.title, &bodies).map_err(out_err)?),
+        None => None,
+    };
+    let columns = history_columns(&bodies, &contacts);
+    let columns: Vec<&str> = columns.iter().map(|s| s.as_str()).collect();
     let cells: usize = bodies.iter().map(|b| b.mesh.n_cells).sum();
     let mut summary = Summary {
         title: case.title.clone(),
@@ -164,9 +172,24 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
                 } else if opts.quiet || !opts.no_files {
                     log.info(&line);
                 }
+                let row = history_row(t, info.outer_iterations, info.residual, &bodies, &contacts);
                 if let Some(h) = &mut history {
-                    h.append(t, info.outer_iterations, info.residual, &bodies, &contacts)
-                        .map_err(io_err)?;
+                    h.append(&row).map_err(io_err)?;
+                }
+                if let Some(w) = &mut fields {
+                    w.write_history(&columns, &row).map_err(out_err)?;
+                    if k % case.output.every == 0 || k == case.time.steps || !info.converged {
+                        w.write(
+                            k,
+                            t,
+                            info.outer_iterations,
+                            info.residual,
+                            info.converged,
+                            &bodies,
+                            &contacts,
+                        )
+                        .map_err(out_err)?;
+                    }
                 }
                 if !info.converged {
                     let msg = format!(
@@ -204,6 +227,9 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
             summary.outer_iterations as f64 / summary.increments.max(1) as f64,
             summary.linear_iterations
         ));
+    }
+    if let Some(w) = fields.take() {
+        w.close().map_err(out_err)?;
     }
     if let Some(d) = &dir {
         write_summary(d, &summary, &bodies, &contacts).map_err(io_err)?;

@@ -8,12 +8,7 @@
 //! keeps the files (DIR/two-body/two-body.{h5,xdmf}, DIR/poly/poly.{h5,xdmf})
 //! for `scripts/check_h5.py` and `scripts/paraview_check.py`.
 
-// The module is compiled into this test directly so that it can be tested
-// before `pub mod output;` is added to lib.rs; afterwards
-// `use solver_app::output::{...};` does the same.
-#[allow(dead_code)]
-#[path = "../src/output/mod.rs"]
-mod output;
+use solver_app::output;
 
 use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};

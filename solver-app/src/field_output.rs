@@ -1,0 +1,214 @@
+//! Adapts the solver's bodies and contacts to the HDF5/XDMF writer
+//! ([`crate::output`]): cell connectivity once, then per written increment
+//! the cell fields, point displacement (cell-to-point least squares) and the
+//! contact fields of every contact patch.
+use std::path::Path;
+
+use crate::contact_coupling::ContactSet;
+use crate::model::Body;
+use crate::output::{
+    BodyIncrement, CellMeshData, OutputError, PatchFaces, PatchIncrement, ResultsWriter,
+};
+use fv_mesh::{CellToPoint, Vector};
+
+/// Per-body buffers of the field output.
+struct BodyBuffers {
+    cell_to_point: Option<CellToPoint>,
+    point_u: Vec<Vector>,
+    points: Vec<[f64; 3]>,
+    point_displacement: Vec<[f64; 3]>,
+    displacement: Vec<[f64; 3]>,
+    stress: Vec<[f64; 6]>,
+}
+
+/// Contact fields of one contact patch, copied out of the contact state.
+struct PatchBuffers {
+    body: usize,
+    patch: usize,
+    face_centres: Vec<[f64; 3]>,
+    pressure: Vec<f64>,
+    traction: Vec<[f64; 3]>,
+    gap: Vec<f64>,
+}
+
+/// The results writer with its buffers.
+pub struct FieldOutput {
+    writer: ResultsWriter,
+    bodies: Vec<BodyBuffers>,
+}
+
+fn mesh_data(b: &Body) -> Result<CellMeshData, OutputError> {
+    let pts: Vec<[f64; 3]> = b.mesh.points.iter().map(|p| [p.x, p.y, p.z]).collect();
+    match &b.mesh.cell_shapes {
+        Some(s) => CellMeshData::from_cells(
+            pts,
+            s.iter().map(|s| (s.kind.vtk_code(), s.nodes.as_slice())),
+        ),
+        None => {
+            let (off, cf) = b.mesh.cell_faces();
+            CellMeshData::from_faces(pts, &b.mesh.face_offsets, &b.mesh.face_points, &off, &cf)
+        }
+    }
+}
+
+impl FieldOutput {
+    /// Creates `<dir>/<title>.h5` and `.xdmf` with the meshes of all bodies.
+    pub fn create(dir: &Path, title: &str, bodies: &[Body]) -> Result<Self, OutputError> {
+        let data: Vec<CellMeshData> = bodies.iter().map(mesh_data).collect::<Result<_, _>>()?;
+        let named: Vec<(&str, &CellMeshData)> = bodies
+            .iter()
+            .zip(&data)
+            .map(|(b, d)| (b.name.as_str(), d))
+            .collect();
+        let writer = ResultsWriter::create(dir, title, &named)?;
+        let buffers = bodies
+            .iter()
+            .map(|b| BodyBuffers {
+                cell_to_point: (!b.rigid).then(|| CellToPoint::new(&b.mesh, &b.geom)),
+                point_u: vec![Vector::zeros(); b.mesh.n_points()],
+                points: vec![[0.0; 3]; b.mesh.n_points()],
+                point_displacement: vec![[0.0; 3]; b.mesh.n_points()],
+                displacement: vec![[0.0; 3]; b.mesh.n_cells],
+                stress: vec![[0.0; 6]; b.mesh.n_cells],
+            })
+            .collect();
+        Ok(FieldOutput {
+            writer,
+            bodies: buffers,
+        })
+    }
+
+    /// Writes increment `k`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn write(
+        &mut self,
+        k: usize,
+        time: f64,
+        outer: usize,
+        residual: f64,
+        converged: bool,
+        bodies: &[Body],
+        contacts: &ContactSet,
+    ) -> Result<(), OutputError> {
+        for (b, buf) in bodies.iter().zip(self.bodies.iter_mut()) {
+            if let Some(op) = &buf.cell_to_point {
+                op.interpolate(&b.momentum.u, &b.momentum.u_b, &mut buf.point_u);
+            } else {
+                for (u, x0) in buf.point_u.iter_mut().zip(&b.mesh.points) {
+                    *u = b.rigid_displacement(x0);
+                }
+            }
+            for (((x, pd), u), x0) in buf
+                .points
+                .iter_mut()
+                .zip(buf.point_displacement.iter_mut())
+                .zip(&buf.point_u)
+                .zip(&b.mesh.points)
+            {
+                *pd = [u.x, u.y, u.z];
+                *x = [x0.x + u.x, x0.y + u.y, x0.z + u.z];
+            }
+            for (i, (d, s)) in buf
+                .displacement
+                .iter_mut()
+                .zip(buf.stress.iter_mut())
+                .enumerate()
+            {
+                if b.rigid {
+                    let u = b.rigid_displacement(&b.geom.cell_centres[i]);
+                    *d = [u.x, u.y, u.z];
+                    *s = [0.0; 6];
+                } else {
+                    let u = b.momentum.u[i];
+                    let t = b.momentum.sigma[i];
+                    *d = [u.x, u.y, u.z];
+                    *s = [
+                        t[(0, 0)],
+                        t[(1, 1)],
+                        t[(2, 2)],
+                        t[(0, 1)],
+                        t[(1, 2)],
+                        t[(0, 2)],
+                    ];
+                }
+            }
+        }
+        // contact patches
+        let mut patches: Vec<PatchBuffers> = Vec::new();
+        for c in &contacts.interfaces {
+            for (side, sc) in [
+                (&c.master, &c.tractions.master),
+                (&c.slave, &c.tractions.slave),
+            ] {
+                let s = &side.surface;
+                let n = s.n_faces();
+                let get = |v: &Vec<f64>, i: usize| v.get(i).copied().unwrap_or(0.0);
+                patches.push(PatchBuffers {
+                    body: side.body,
+                    patch: side.patch,
+                    face_centres: s.face_centres.iter().map(|p| [p.x, p.y, p.z]).collect(),
+                    pressure: (0..n).map(|i| get(&sc.pressure, i)).collect(),
+                    traction: (0..n)
+                        .map(|i| {
+                            let t = side.applied.get(i).copied().unwrap_or_else(Vector::zeros);
+                            [t.x, t.y, t.z]
+                        })
+                        .collect(),
+                    gap: (0..n)
+                        .map(|i| {
+                            let g = get(&sc.gap, i);
+                            if g.is_finite() {
+                                g
+                            } else {
+                                f64::NAN
+                            }
+                        })
+                        .collect(),
+                });
+            }
+        }
+        let incs: Vec<BodyIncrement> = bodies
+            .iter()
+            .zip(&self.bodies)
+            .enumerate()
+            .map(|(bi, (b, buf))| BodyIncrement {
+                name: &b.name,
+                points: &buf.points,
+                displacement: &buf.displacement,
+                stress: &buf.stress,
+                plastic_strain: None,
+                point_displacement: &buf.point_displacement,
+                patches: patches
+                    .iter()
+                    .filter(|p| p.body == bi)
+                    .map(|p| {
+                        let r = b.mesh.patches[p.patch].faces();
+                        PatchIncrement {
+                            name: &b.mesh.patches[p.patch].name,
+                            faces: PatchFaces {
+                                offsets: &b.mesh.face_offsets[r.start..=r.end],
+                                connectivity: &b.mesh.face_points,
+                            },
+                            face_centres: &p.face_centres,
+                            contact_pressure: &p.pressure,
+                            contact_traction: &p.traction,
+                            gap: &p.gap,
+                        }
+                    })
+                    .collect(),
+            })
+            .collect();
+        self.writer
+            .write_increment(k, time, outer, residual, converged, &incs)
+    }
+
+    /// Appends one row to `/history`.
+    pub fn write_history(&mut self, columns: &[&str], row: &[f64]) -> Result<(), OutputError> {
+        self.writer.write_history(columns, row)
+    }
+
+    /// Closes the file.
+    pub fn close(self) -> Result<(), OutputError> {
+        self.writer.close()
+    }
+}

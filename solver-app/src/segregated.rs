@@ -274,12 +274,7 @@ impl SegregatedSolver {
         if !contacts.is_empty() {
             contacts.update(bodies).map_err(SolveError::Contact)?;
         }
-        for b in bodies.iter_mut().filter(|b| !b.rigid) {
-            let m = &mut b.momentum;
-            m.update_boundary_values(&b.mesh, &b.geom, b.material.as_ref());
-            m.update_gradient_and_stress(&b.mesh, b.material.as_ref());
-            m.compute_residual(&b.mesh, &b.geom, b.material.as_ref(), &self.params);
-        }
+        self.update_fields(bodies);
         for c in 0..3 {
             let Some(mi) = self.component_matrix[c] else {
                 self.delta.iter_mut().for_each(|d| d[c] = 0.0);

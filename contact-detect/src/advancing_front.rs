@@ -16,7 +16,7 @@ use fv_mesh::Surface;
 /// 2. **Front** (Fig. 4.12 b–d): a seed is accepted if its projection onto
 ///    the plane of `m` overlaps polygon `m` — the local phase alone, blind
 ///    to the distance along the normal ([`Workspace::front_test`], after a
-///    cheap box-against-prism test). The faces sharing a *point* with an
+///    cheap bounding-disc test). The faces sharing a *point* with an
 ///    accepted face are tested in turn, until no new face is accepted;
 ///    each slave face is tested at most once per master face (stamp
 ///    array). Accepted faces that also pass the global phase (AABB, then

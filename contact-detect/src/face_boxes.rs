@@ -2,6 +2,8 @@
 use crate::aabb::Aabb;
 use crate::convex_hull_2d::V2;
 use crate::obb::{face_obb, FaceBoxSize, Obb, ObbScratch};
+use crate::sat_polygon_polygon::{prepare_polygon, PreparedPolygon};
+use crate::DetectParams;
 use fv_mesh::{Real, Surface, Vector};
 
 /// A face is degenerate, and skipped, when its area is at most this
@@ -42,21 +44,25 @@ pub struct FaceBoxes {
     pub polygon_offsets: Vec<u32>,
     /// Face points in the in-plane axes of the face OBB, relative to its centre.
     pub polygon: Vec<V2>,
+    /// Unit edge normals of each polygon (indexed like `polygon`).
+    pub polygon_axes: Vec<V2>,
+    /// Extent of each polygon along its edge normals (indexed like `polygon`).
+    pub polygon_extents: Vec<[Real; 2]>,
+    /// Bounding box of each polygon in its frame, `[x_min, x_max, y_min, y_max]`.
+    pub polygon_box: Vec<[Real; 4]>,
+    /// Largest distance from the face centre to a face point.
+    pub radius: Vec<Real>,
     /// Number of invalid faces.
     pub n_invalid: usize,
     scratch: ObbScratch,
 }
 
 impl FaceBoxes {
-    /// Recomputes all boxes of `s` for mean cell height `h` (eq. 4.10).
-    pub fn update(
-        &mut self,
-        s: &Surface,
-        h: Real,
-        extrude_out: Real,
-        extrude_in: Real,
-        inflation: Real,
-    ) {
+    /// Recomputes all boxes of `s` for mean cell height `h` (eq. 4.10);
+    /// the polygons (needed on the master side only) if `polygons`.
+    pub fn update(&mut self, s: &Surface, h: Real, params: &DetectParams, polygons: bool) {
+        let (extrude_out, extrude_in, inflation) =
+            (params.extrusion_out, params.extrusion_in, params.inflation);
         let nf = s.faces.len();
         self.obb.clear();
         self.aabb.clear();
@@ -64,6 +70,10 @@ impl FaceBoxes {
         self.scale.clear();
         self.polygon_offsets.clear();
         self.polygon.clear();
+        self.polygon_axes.clear();
+        self.polygon_extents.clear();
+        self.polygon_box.clear();
+        self.radius.clear();
         self.polygon_offsets.push(0);
         self.n_invalid = 0;
         let size = FaceBoxSize {
@@ -100,7 +110,7 @@ impl FaceBoxes {
                     &c,
                     &size,
                     &mut self.scratch,
-                    &mut self.polygon,
+                    polygons.then_some(&mut self.polygon),
                 ) {
                     Some(b) => obb = b,
                     None => {
@@ -109,6 +119,21 @@ impl FaceBoxes {
                     }
                 }
             }
+            let start = self.polygon_offsets[f] as usize;
+            let bbox = prepare_polygon(
+                &self.polygon[start..],
+                &mut self.polygon_axes,
+                &mut self.polygon_extents,
+            );
+            self.polygon_box.push(bbox);
+            let r2 = if ok {
+                pts.iter()
+                    .map(|&p| (s.points[p as usize] - c).norm_squared())
+                    .fold(0.0, Real::max)
+            } else {
+                0.0
+            };
+            self.radius.push(r2.sqrt());
             if ok {
                 let k = 2.0 / (1.0 + inflation);
                 self.scale.push(k * obb.half[0].max(obb.half[1]));
@@ -121,6 +146,18 @@ impl FaceBoxes {
             self.obb.push(obb);
             self.valid.push(ok);
             self.polygon_offsets.push(self.polygon.len() as u32);
+        }
+    }
+
+    /// Polygon of face `f` with its separating axes (empty for invalid faces).
+    #[inline]
+    pub fn prepared_polygon(&self, f: usize) -> PreparedPolygon<'_> {
+        let r = self.polygon_offsets[f] as usize..self.polygon_offsets[f + 1] as usize;
+        PreparedPolygon {
+            points: &self.polygon[r.clone()],
+            axes: &self.polygon_axes[r.clone()],
+            extents: &self.polygon_extents[r],
+            bbox: self.polygon_box[f],
         }
     }
 

@@ -11,7 +11,8 @@
 //!    of the two OBBs were found to meet (a necessary condition, tested first);
 //! 3. **local phase**: the slave polygon, projected orthogonally onto the
 //!    plane of `m`, overlaps polygon `m` by the 2-D separating-axis test
-//!    ([`polygons_overlap`]); touching counts as overlap, within
+//!    ([`prepared_polygons_overlap`]: the edge normals of both polygons and
+//!    the axes of `m`'s rectangle); touching counts as overlap, within
 //!    [`DetectParams::touch_tolerance`] × the longest side of `m`'s rectangle.
 //!
 //! The face OBB (§4.2.1, Fig. 4.10): its normal axis is the face normal; its
@@ -57,7 +58,6 @@ mod min_area_rectangle;
 mod obb;
 mod params;
 mod sat_obb_obb;
-mod sat_obb_prism;
 mod sat_polygon_polygon;
 mod seed_search;
 mod surface_check;
@@ -77,8 +77,9 @@ pub use min_area_rectangle::{min_area_rectangle, Rectangle};
 pub use obb::{face_obb, plane_basis, FaceBoxSize, Obb, ObbScratch};
 pub use params::DetectParams;
 pub use sat_obb_obb::obb_overlap;
-pub use sat_obb_prism::obb_meets_prism;
-pub use sat_polygon_polygon::polygons_overlap;
+pub use sat_polygon_polygon::{
+    polygons_overlap, prepare_polygon, prepared_polygons_overlap, PreparedPolygon,
+};
 pub use seed_search::SeedSearch;
 pub use surface_check::check_surface;
 pub use workspace::Workspace;
@@ -102,7 +103,7 @@ pub struct DetectionStats {
     pub obb_tests: u64,
     /// Local-phase polygon tests (2-D SAT).
     pub polygon_tests: u64,
-    /// Front tests (box against a master face's prism; advancing front only).
+    /// Front tests (advancing front only, see [`Workspace::front_test`]).
     pub front_tests: u64,
     /// Brute-force seed searches (advancing front only).
     pub seed_searches: usize,

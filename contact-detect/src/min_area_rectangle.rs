@@ -62,57 +62,75 @@ pub fn min_area_rectangle(hull: &[V2]) -> Option<Rectangle> {
         }
         _ => {}
     }
-    let at = |i: usize| hull[i % n];
+    // indices stay in 0..n (no modulo in the loop)
+    let next = |k: usize| if k + 1 == n { 0 } else { k + 1 };
     // advance index `k` while the next vertex is further along `dir`
     let climb = |mut k: usize, dir: V2| {
+        let mut here = hull[k].dot(&dir);
         for _ in 0..n {
-            if at(k + 1).dot(&dir) > at(k).dot(&dir) {
-                k += 1;
+            let k1 = next(k);
+            let there = hull[k1].dot(&dir);
+            if there > here {
+                (k, here) = (k1, there);
             } else {
                 break;
             }
         }
         k
     };
-    let mut best: Option<(f64, Rectangle)> = None;
+    // Edge directions are left unnormalised: every projection then scales
+    // with the edge length L, the area with L², and only the winner is
+    // normalised (no square root per edge).
+    let mut best: Option<(f64, usize, [f64; 4])> = None;
     let (mut k_max, mut k_top, mut k_min) = (0usize, 0usize, 0usize);
     let mut started = false;
     for i in 0..n {
-        let e = at(i + 1) - at(i);
-        let len = e.norm();
-        if !(len > 0.0 && len.is_finite()) {
+        let d = hull[next(i)] - hull[i];
+        let l2 = d.norm_squared();
+        if !(l2 > 0.0 && l2.is_finite()) {
             continue;
         }
-        let d = e / len;
         let nrm = left(d);
         if !started {
             // first valid edge: full scan for the three extremes
-            let arg = |f: &dyn Fn(V2) -> f64| {
-                (0..n).fold(0usize, |b, j| if f(hull[j]) > f(hull[b]) { j } else { b })
-            };
-            k_max = arg(&|p| p.dot(&d));
-            k_top = arg(&|p| p.dot(&nrm));
-            k_min = arg(&|p| -p.dot(&d));
+            let (mut bmax, mut btop, mut bmin) =
+                (hull[0].dot(&d), hull[0].dot(&nrm), -hull[0].dot(&d));
+            for (j, p) in hull.iter().enumerate().skip(1) {
+                let (x, y) = (p.dot(&d), p.dot(&nrm));
+                if x > bmax {
+                    (bmax, k_max) = (x, j);
+                }
+                if y > btop {
+                    (btop, k_top) = (y, j);
+                }
+                if -x > bmin {
+                    (bmin, k_min) = (-x, j);
+                }
+            }
             started = true;
         } else {
             k_max = climb(k_max, d);
             k_top = climb(k_top, nrm);
             k_min = climb(k_min, -d);
         }
-        let base = at(i).dot(&nrm);
-        let (lo, hi) = (at(k_min).dot(&d), at(k_max).dot(&d));
-        let top = at(k_top).dot(&nrm);
-        let rect = Rectangle {
-            centre: d * (0.5 * (lo + hi)) + nrm * (0.5 * (base + top)),
-            axis: d,
-            half: V2::new(0.5 * (hi - lo), 0.5 * (top - base)),
-        };
-        let area = rect.area();
-        if best.as_ref().is_none_or(|(a, _)| area < *a) {
-            best = Some((area, rect));
+        let base = hull[i].dot(&nrm);
+        let (lo, hi) = (hull[k_min].dot(&d), hull[k_max].dot(&d));
+        let top = hull[k_top].dot(&nrm);
+        let area = (hi - lo) * (top - base) / l2;
+        if best.as_ref().is_none_or(|(a, _, _)| area < *a) {
+            best = Some((area, i, [lo, hi, base, top]));
         }
     }
-    best.map(|(_, r)| r)
+    let (_, i, [lo, hi, base, top]) = best?;
+    let d = hull[next(i)] - hull[i];
+    let l = d.norm();
+    let axis = d / l;
+    let (lo, hi, base, top) = (lo / l, hi / l, base / l, top / l);
+    Some(Rectangle {
+        centre: axis * (0.5 * (lo + hi)) + left(axis) * (0.5 * (base + top)),
+        axis,
+        half: V2::new(0.5 * (hi - lo), 0.5 * (top - base)),
+    })
 }
 
 #[cfg(test)]

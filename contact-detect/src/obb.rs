@@ -54,6 +54,35 @@ pub fn plane_basis(n: &Vector) -> (Vector, Vector) {
     )
 }
 
+/// Writes a triangle or quadrilateral that is strictly convex in its given
+/// order into `hull`, counter-clockwise (the convex hull without sorting);
+/// `false` for anything else.
+fn convex_in_order(p: &[V2], hull: &mut Vec<V2>) -> bool {
+    let n = p.len();
+    if !(3..=4).contains(&n) {
+        return false;
+    }
+    let next = |i: usize| if i + 1 == n { 0 } else { i + 1 };
+    let mut sign = 0.0;
+    for i in 0..n {
+        let (a, b, c) = (p[i], p[next(i)], p[next(next(i))]);
+        let e = b - a;
+        let f = c - b;
+        let cr = e.x * f.y - e.y * f.x;
+        if !(cr.abs() > 0.0) || (sign != 0.0 && cr.signum() != sign) {
+            return false;
+        }
+        sign = cr.signum();
+    }
+    hull.clear();
+    if sign > 0.0 {
+        hull.extend_from_slice(p);
+    } else {
+        hull.extend(p.iter().rev());
+    }
+    true
+}
+
 /// Scratch buffers of [`face_obb`], reused between faces.
 #[derive(Debug, Default, Clone)]
 pub struct ObbScratch {
@@ -73,8 +102,9 @@ pub struct FaceBoxSize {
     pub inflation: Real,
 }
 
-/// Builds the box of a face (Fig. 4.10) and writes the face polygon, in the
-/// box's in-plane coordinates relative to its centre, into `polygon`.
+/// Builds the box of a face (Fig. 4.10) and, if asked, appends the face
+/// polygon, in the box's in-plane coordinates relative to its centre, to
+/// `polygon`.
 ///
 /// Steps: project the points onto the plane through `centre` normal to
 /// the unit `normal`; minimum-area enclosing rectangle of their convex hull
@@ -89,7 +119,7 @@ pub fn face_obb(
     centre: &Vector,
     size: &FaceBoxSize,
     scratch: &mut ObbScratch,
-    polygon: &mut Vec<V2>,
+    polygon: Option<&mut Vec<V2>>,
 ) -> Option<Obb> {
     let (e1, e2) = plane_basis(normal);
     scratch.projected.clear();
@@ -101,7 +131,9 @@ pub fn face_obb(
         dmin = dmin.min(d);
         dmax = dmax.max(d);
     }
-    convex_hull(&scratch.projected, &mut scratch.sorted, &mut scratch.hull);
+    if !convex_in_order(&scratch.projected, &mut scratch.hull) {
+        convex_hull(&scratch.projected, &mut scratch.sorted, &mut scratch.hull);
+    }
     let rect = min_area_rectangle(&scratch.hull)?;
     let u = e1 * rect.axis.x + e2 * rect.axis.y;
     let v = normal.cross(&u);
@@ -116,10 +148,12 @@ pub fn face_obb(
             0.5 * (hi - lo),
         ],
     };
-    polygon.extend(points.map(|x| {
-        let r = x - obb.centre;
-        V2::new(r.dot(&u), r.dot(&v))
-    }));
+    if let Some(polygon) = polygon {
+        polygon.extend(points.map(|x| {
+            let r = x - obb.centre;
+            V2::new(r.dot(&u), r.dot(&v))
+        }));
+    }
     let ok = obb.centre.iter().all(|c| c.is_finite()) && obb.half.iter().all(|h| h.is_finite());
     ok.then_some(obb)
 }
@@ -164,7 +198,7 @@ mod tests {
             &Vector::new(0.5, 0.5, 0.0),
             &size,
             &mut ObbScratch::default(),
-            &mut poly,
+            Some(&mut poly),
         )
         .unwrap();
         assert!((b.half[0] - 0.525).abs() < 1e-12 && (b.half[1] - 0.525).abs() < 1e-12);
@@ -206,7 +240,7 @@ mod tests {
             &Vector::new(0.5, 0.5, 0.0),
             &size,
             &mut ObbScratch::default(),
-            &mut poly,
+            Some(&mut poly),
         )
         .unwrap();
         for p in &pts {

@@ -14,6 +14,7 @@ const PARALLEL_EPS: Real = 1e-12;
 /// of `a` (Gottschalk's formulation). Exact up to round-off; the
 /// [`PARALLEL_EPS`] guard only ever turns a separation into an overlap.
 /// Cost: at most 15 axis tests, ~80 flops when the boxes overlap.
+#[inline]
 pub fn obb_overlap(a: &Obb, b: &Obb) -> bool {
     let (ea, eb) = (&a.half, &b.half);
     let mut r = [[0.0; 3]; 3];

@@ -4,8 +4,7 @@ use crate::contact_zone::ContactZone;
 use crate::convex_hull_2d::V2;
 use crate::face_boxes::{mean_face_size, FaceBoxes};
 use crate::sat_obb_obb::obb_overlap;
-use crate::sat_obb_prism::obb_meets_prism;
-use crate::sat_polygon_polygon::polygons_overlap;
+use crate::sat_polygon_polygon::prepared_polygons_overlap;
 use crate::surface_check::check_surface;
 use crate::{DetectError, DetectParams, DetectionStats};
 use fv_mesh::{Real, Surface};
@@ -46,11 +45,8 @@ impl Workspace {
             .mean_cell_height
             .or_else(|| mean_face_size(master, slave))
             .unwrap_or(0.0);
-        let p = params;
-        self.master
-            .update(master, self.h, p.extrusion_out, p.extrusion_in, p.inflation);
-        self.slave
-            .update(slave, self.h, p.extrusion_out, p.extrusion_in, p.inflation);
+        self.master.update(master, self.h, params, true);
+        self.slave.update(slave, self.h, params, false);
         self.zone.update(&self.master, &self.slave);
         Ok(())
     }
@@ -83,8 +79,9 @@ impl Workspace {
 
     /// Front condition of the advancing front: valid slave face `s`,
     /// projected onto the plane of master face `m`, overlaps its polygon
-    /// (the local phase alone, blind to the distance along the normal);
-    /// the box-against-prism test rejects most faces first.
+    /// (the local phase alone, blind to the distance along the normal).
+    /// Faces whose bounding disc (centre, [`FaceBoxes::radius`]) projects
+    /// clear of the polygon's bounding box are rejected first.
     #[inline]
     pub fn front_test(
         &self,
@@ -94,10 +91,21 @@ impl Workspace {
         stats: &mut DetectionStats,
     ) -> bool {
         stats.front_tests += 1;
-        let slack = self.params.touch_tolerance * self.master.scale[m];
-        self.slave.valid[s]
-            && obb_meets_prism(&self.master.obb[m], &self.slave.obb[s], slack)
-            && self.local_test(slave, m, s, stats)
+        if !self.slave.valid[s] {
+            return false;
+        }
+        let b = &self.master.obb[m];
+        let r = slave.face_centres[s] - b.centre;
+        let (x, y) = (r.dot(&b.axes[0]), r.dot(&b.axes[1]));
+        let rho = self.slave.radius[s];
+        let bb = &self.master.polygon_box[m];
+        let slack = rho
+            + self.params.touch_tolerance * self.master.scale[m]
+            + 1e-9 * (rho + self.master.scale[m]);
+        if x - slack > bb[1] || x + slack < bb[0] || y - slack > bb[3] || y + slack < bb[2] {
+            return false;
+        }
+        self.local_test(slave, m, s, stats)
     }
 
     /// Global phase for `(m, s)`: the AABBs of the OBBs meet, then the OBBs
@@ -125,17 +133,17 @@ impl Workspace {
             V2::new(r.dot(&u), r.dot(&v))
         };
         let tol = self.params.touch_tolerance * self.master.scale[m];
-        let mpoly = self.master.polygon(m);
+        let mpoly = self.master.prepared_polygon(m);
         let pts = slave.face(s);
         if pts.len() <= STACK_POLYGON {
             let mut buf = [V2::zeros(); STACK_POLYGON];
             for (q, p) in buf.iter_mut().zip(pts) {
                 *q = project(p);
             }
-            polygons_overlap(mpoly, &buf[..pts.len()], tol)
+            prepared_polygons_overlap(&mpoly, &buf[..pts.len()], tol)
         } else {
             let poly: Vec<V2> = pts.iter().map(project).collect();
-            polygons_overlap(mpoly, &poly, tol)
+            prepared_polygons_overlap(&mpoly, &poly, tol)
         }
     }
 

@@ -11,7 +11,10 @@
 //! Environment: `FVC_BENCH_MAX_FACES` (default 1000000) caps N;
 //! `FVC_BENCH_BRUTE_MAX` (default 10000) caps N for brute force in the
 //! criterion loop; `FVC_BENCH_BRUTE_ONCE=1` times one brute-force call at
-//! N = 10⁵ outside criterion (tens of seconds).
+//! N = 10⁵ outside criterion (tens of seconds); `FVC_BENCH_TABLE=1` skips
+//! criterion and prints a table of the minimum and median of repeated
+//! calls (the minimum is the figure least disturbed by other processes on
+//! a shared machine).
 use contact_detect::{
     AdvancingFront, BruteForce, BvhDetector, CandidatePairs, DetectParams, Detector,
 };
@@ -92,7 +95,97 @@ fn setup(n: usize) -> Pair {
     }
 }
 
+/// Minimum and median wall time of `f` over up to `max_runs` calls (at
+/// least 3, at most about `budget`).
+fn min_median(max_runs: usize, budget: Duration, mut f: impl FnMut()) -> (Duration, Duration) {
+    let mut t = Vec::new();
+    let start = Instant::now();
+    while t.len() < max_runs && (t.len() < 3 || start.elapsed() < budget) {
+        let s = Instant::now();
+        f();
+        t.push(s.elapsed());
+    }
+    t.sort();
+    (t[0], t[t.len() / 2])
+}
+
+fn table(max_faces: usize, brute_max: usize) {
+    let params = DetectParams::default();
+    let mut out = CandidatePairs::new();
+    println!("| N | detector | case | min | median |");
+    println!("|---|---|---|---|---|");
+    for n in [32usize, 100, 316, 1000] {
+        if n * n > max_faces * 11 / 10 {
+            continue;
+        }
+        let p = setup(n);
+        let nf = n * n;
+        let budget = Duration::from_secs(if nf > 200_000 { 20 } else { 4 });
+        let row = |name: &str, case: &str, (a, b): (Duration, Duration)| {
+            println!("| {nf} | {name} | {case} | {a:.3?} | {b:.3?} |");
+        };
+        if nf <= brute_max {
+            let mut d = BruteForce::new(params);
+            row(
+                "brute-force",
+                "any",
+                min_median(10, budget, || {
+                    d.detect(&p.master, &p.slave_b, &mut out).expect("bf");
+                }),
+            );
+        }
+        let mut bvh = BvhDetector::new(params);
+        let mut flip = false;
+        row(
+            "bvh",
+            "any",
+            min_median(20, budget, || {
+                flip = !flip;
+                let s = if flip { &p.slave_a } else { &p.slave_b };
+                bvh.detect(&p.master, s, &mut out).expect("bvh");
+            }),
+        );
+        let mut af = AdvancingFront::new(params);
+        row(
+            "advancing-front",
+            "cold",
+            min_median(20, budget, || {
+                af.reset();
+                af.detect(&p.master, &p.slave_a, &mut out).expect("af");
+            }),
+        );
+        af.reset();
+        let cold = af.detect(&p.master, &p.slave_a, &mut out).expect("af");
+        let warm = af.detect(&p.master, &p.slave_b, &mut out).expect("af");
+        eprintln!("N = {nf}: cold {cold:?}\nN = {nf}: warm {warm:?}");
+        row(
+            "advancing-front",
+            "after small motion",
+            min_median(20, budget, || {
+                flip = !flip;
+                let s = if flip { &p.slave_a } else { &p.slave_b };
+                af.detect(&p.master, s, &mut out).expect("af");
+            }),
+        );
+        let mut ws = contact_detect::Workspace::default();
+        row(
+            "(boxes and zone only)",
+            "any",
+            min_median(20, budget, || {
+                ws.prepare(&p.master, &p.slave_a, &params).expect("prepare");
+            }),
+        );
+    }
+}
+
 fn bench(c: &mut Criterion) {
+    if std::env::var("FVC_BENCH_TABLE").is_ok() {
+        table(
+            env_usize("FVC_BENCH_MAX_FACES", 1_000_000),
+            env_usize("FVC_BENCH_BRUTE_MAX", 10_000),
+        );
+        return;
+    }
     let max_faces = env_usize("FVC_BENCH_MAX_FACES", 1_000_000);
     let brute_max = env_usize("FVC_BENCH_BRUTE_MAX", 10_000);
     let params = DetectParams::default();

@@ -128,8 +128,8 @@ pub fn face_obb(
         let r = x - centre;
         scratch.projected.push(V2::new(r.dot(&e1), r.dot(&e2)));
         let d = r.dot(normal);
-        dmin = dmin.min(d);
-        dmax = dmax.max(d);
+        dmin = if d < dmin { d } else { dmin };
+        dmax = if d > dmax { d } else { dmax };
     }
     if !convex_in_order(&scratch.projected, &mut scratch.hull) {
         convex_hull(&scratch.projected, &mut scratch.sorted, &mut scratch.hull);

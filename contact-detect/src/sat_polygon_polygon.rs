@@ -9,8 +9,9 @@ fn interval(poly: &[V2], axis: V2) -> (Real, Real) {
     let mut hi = Real::NEG_INFINITY;
     for p in poly {
         let x = p.x * axis.x + p.y * axis.y;
-        lo = lo.min(x);
-        hi = hi.max(x);
+        // plain comparisons compile to minsd/maxsd (NaN is ignored either way)
+        lo = if x < lo { x } else { lo };
+        hi = if x > hi { x } else { hi };
     }
     (lo, hi)
 }

@@ -30,7 +30,8 @@ pub struct Workspace {
 
 impl Workspace {
     /// Checks the inputs, then builds h̄, every face box and the contact zone.
-    /// Cost O(faces) with a small constant (rotating calipers per face).
+    /// Cost O(faces) with a small constant (rotating calipers per face); the
+    /// master and slave boxes are built in parallel (rayon).
     pub fn prepare(
         &mut self,
         master: &Surface,
@@ -45,8 +46,12 @@ impl Workspace {
             .mean_cell_height
             .or_else(|| mean_face_size(master, slave))
             .unwrap_or(0.0);
-        self.master.update(master, self.h, params, true);
-        self.slave.update(slave, self.h, params, false);
+        let (h, mb, sb) = (self.h, &mut self.master, &mut self.slave);
+        // the two surfaces are independent: one thread each when there are two
+        rayon::join(
+            || mb.update(master, h, params, true),
+            || sb.update(slave, h, params, false),
+        );
         self.zone.update(&self.master, &self.slave);
         Ok(())
     }

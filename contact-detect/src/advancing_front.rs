@@ -11,8 +11,8 @@ use fv_mesh::Surface;
 /// For every master face `m` in the contact zone, in index order:
 ///
 /// 1. **Seeds** (Fig. 4.13): the slave faces of `m`'s front at the
-///    previous call, and those of its master neighbours — this call's for
-///    neighbours already processed, the previous call's for the others.
+///    previous call, and this call's fronts of its master neighbours
+///    already processed (lower index).
 /// 2. **Front** (Fig. 4.12 b–d): a seed is accepted if its projection onto
 ///    the plane of `m` overlaps polygon `m` — the local phase alone, blind
 ///    to the distance along the normal ([`Workspace::front_test`], after a
@@ -220,15 +220,10 @@ impl AdvancingFront {
             }
             for &mn in master.neighbours_of_face(m) {
                 let mn = mn as usize;
-                let seeds = if mn < m {
-                    cur.slaves_of(mn)
-                } else if seeded {
-                    prev.slaves_of(mn)
-                } else {
-                    &[]
-                };
-                for &s in seeds {
-                    front.visit(m, s);
+                if mn < m {
+                    for &s in cur.slaves_of(mn) {
+                        front.visit(m, s);
+                    }
                 }
             }
             // 2. advance the front

@@ -22,8 +22,9 @@ fn csr_ok(offsets: &[u32], rows: usize, len: usize) -> Result<(), String> {
     Ok(())
 }
 
-/// Checks the arrays of `s` that detection reads: CSR face points and face
-/// neighbours, index ranges, and one centre, area and normal per face.
+/// Checks the arrays of `s` that detection reads: CSR face points, face
+/// neighbours and point faces, index ranges, and one centre, area and
+/// normal per face.
 /// Cost O(faces + face points). Geometry values are not checked here:
 /// degenerate or non-finite faces are skipped later, not rejected.
 pub fn check_surface(s: &Surface, side: &'static str) -> Result<(), DetectError> {
@@ -37,6 +38,11 @@ pub fn check_surface(s: &Surface, side: &'static str) -> Result<(), DetectError>
     csr_ok(&s.face_neighbour_offsets, nf, s.face_neighbours.len())
         .map_err(|m| err(format!("face neighbours: {m}")))?;
     let np = s.points.len();
+    csr_ok(&s.point_face_offsets, np, s.point_faces.len())
+        .map_err(|m| err(format!("point faces: {m}")))?;
+    if let Some(f) = s.point_faces.iter().find(|&&f| f as usize >= nf) {
+        return Err(err(format!("point face {f} out of range ({nf} faces)")));
+    }
     if let Some(p) = s.face_points.iter().find(|&&p| p as usize >= np) {
         return Err(err(format!("face point {p} out of range ({np} points)")));
     }

@@ -266,6 +266,10 @@ fn inconsistent_surfaces_are_errors_and_empty_surfaces_give_no_pairs() {
     bad2.face_points[0] = 10_000;
     let mut bad3 = slave.surface.clone();
     bad3.face_offsets.pop();
+    let mut bad4 = slave.surface.clone();
+    bad4.point_faces[0] = 99;
+    let mut bad5 = slave.surface.clone();
+    bad5.point_face_offsets.truncate(3);
     let mut empty = slave.surface.clone();
     empty.faces.clear();
     empty.face_offsets = vec![0];
@@ -276,10 +280,13 @@ fn inconsistent_surfaces_are_errors_and_empty_surfaces_give_no_pairs() {
     empty.face_normals.clear();
     empty.face_mag.clear();
     empty.face_areas.clear();
+    empty.points.clear();
+    empty.point_face_offsets = vec![0];
+    empty.point_faces.clear();
     for m in DetectionMethod::ALL {
         let mut d = m.detector(DetectParams::default()).unwrap();
         let mut out = CandidatePairs::new();
-        for b in [&bad, &bad2, &bad3] {
+        for b in [&bad, &bad2, &bad3, &bad4, &bad5] {
             let e = d.detect(&master.surface, b, &mut out).unwrap_err();
             assert!(
                 matches!(e, DetectError::InvalidSurface { side: "slave", .. }),

@@ -77,31 +77,11 @@ impl ContactLaw {
     /// Checks that the penalties are positive (ε_t may be 0) and finite
     /// and μ ≥ 0.
     pub fn validate(&self) -> Result<(), ContactError> {
-        let bad = |name, value, reason| {
-            Err(ContactError::InvalidParameter {
-                name,
-                value,
-                reason,
-            })
-        };
-        if !(self.normal_penalty > 0.0 && self.normal_penalty.is_finite()) {
-            return bad(
-                "normal_penalty",
-                self.normal_penalty,
-                "must be positive and finite",
-            );
-        }
-        if !(self.tangential_penalty >= 0.0 && self.tangential_penalty.is_finite()) {
-            return bad(
-                "tangential_penalty",
-                self.tangential_penalty,
-                "must be non-negative and finite",
-            );
-        }
-        if !(self.friction >= 0.0 && self.friction.is_finite()) {
-            return bad("friction", self.friction, "must be non-negative and finite");
-        }
-        Ok(())
+        check_normal_tangential_friction(
+            ("normal_penalty", self.normal_penalty),
+            ("tangential_penalty", self.tangential_penalty),
+            self.friction,
+        )
     }
 
     /// Normal contact pressure for a gap (eq. 4.1), ≥ 0.
@@ -109,6 +89,37 @@ impl ContactLaw {
     pub fn pressure(&self, gap: Real) -> Real {
         normal_pressure(self.normal_penalty, gap)
     }
+}
+
+/// Checks a (normal, tangential) pair of penalty quantities and μ: the
+/// normal one positive and finite, the tangential one and μ non-negative
+/// and finite.
+fn check_normal_tangential_friction(
+    (normal_name, normal): (&'static str, Real),
+    (tangential_name, tangential): (&'static str, Real),
+    friction: Real,
+) -> Result<(), ContactError> {
+    let bad = |name, value, reason| {
+        Err(ContactError::InvalidParameter {
+            name,
+            value,
+            reason,
+        })
+    };
+    if !(normal > 0.0 && normal.is_finite()) {
+        return bad(normal_name, normal, "must be positive and finite");
+    }
+    if !(tangential >= 0.0 && tangential.is_finite()) {
+        return bad(
+            tangential_name,
+            tangential,
+            "must be non-negative and finite",
+        );
+    }
+    if !(friction >= 0.0 && friction.is_finite()) {
+        return bad("friction", friction, "must be non-negative and finite");
+    }
+    Ok(())
 }
 
 /// The Macaulay bracket ⟨φ⟩ = (|φ| + φ)/2 (eq. 4.2).
@@ -132,31 +143,11 @@ impl PenaltyParams {
     /// Checks the scales (positive, finite; the tangential one may be 0)
     /// and μ ≥ 0.
     pub fn validate(&self) -> Result<(), ContactError> {
-        let bad = |name, value, reason| {
-            Err(ContactError::InvalidParameter {
-                name,
-                value,
-                reason,
-            })
-        };
-        if !(self.penalty_scale > 0.0 && self.penalty_scale.is_finite()) {
-            return bad(
-                "penalty_scale",
-                self.penalty_scale,
-                "must be positive and finite",
-            );
-        }
-        if !(self.tangential_penalty_scale >= 0.0 && self.tangential_penalty_scale.is_finite()) {
-            return bad(
-                "tangential_penalty_scale",
-                self.tangential_penalty_scale,
-                "must be non-negative and finite",
-            );
-        }
-        if !(self.friction >= 0.0 && self.friction.is_finite()) {
-            return bad("friction", self.friction, "must be non-negative and finite");
-        }
-        Ok(())
+        check_normal_tangential_friction(
+            ("penalty_scale", self.penalty_scale),
+            ("tangential_penalty_scale", self.tangential_penalty_scale),
+            self.friction,
+        )
     }
 
     /// The penalty parameters of eqs. 4.4a and 4.4b,

@@ -21,6 +21,50 @@ pub enum PatchCondition {
     /// A wedge plane of an axisymmetric one-cell wedge: the boundary value is
     /// the cell value rotated onto the face plane (per-face rotation tensor).
     Wedge(Vec<Tensor>),
+    /// A contact surface with implicit coupling: the penalty traction
+    /// linearised about the last contact evaluation (thesis eq. 4.52).
+    LinearisedContact(LinearisedContact),
+}
+
+/// The linearised normal contact traction of thesis eq. (4.52), per face:
+///
+/// t_b = t* − ε_n β (n* n*)·(u_b − u_b*),
+///
+/// where t*, n* and u_b* are the traction, normal and boundary displacement
+/// of the last contact evaluation, and ε_n β the penalty stiffness times the
+/// relative contact area. The boundary displacement that satisfies it is
+/// solved face by face (eq. 4.53) and the normal stiffness, in series with
+/// the half-cell stiffness K/δ_n, enters the matrix diagonal (eq. 4.54 i);
+/// at convergence u_b = u_b* and the traction is exactly t*.
+#[derive(Debug, Clone, Default)]
+pub struct LinearisedContact {
+    /// t*: traction from the last contact evaluation (tangential part included).
+    pub traction: Vec<Vector>,
+    /// ε_n β: penalty stiffness per unit area (Pa/m), 0 where not in contact.
+    pub stiffness: Vec<f64>,
+    /// n*: the contact normal of the last evaluation.
+    pub normal: Vec<Vector>,
+    /// u_b*: the boundary displacement at the last evaluation.
+    pub reference: Vec<Vector>,
+}
+
+impl LinearisedContact {
+    /// A traction-free contact surface of `n` faces.
+    pub fn new(n: usize) -> Self {
+        LinearisedContact {
+            traction: vec![Vector::zeros(); n],
+            stiffness: vec![0.0; n],
+            normal: vec![Vector::zeros(); n],
+            reference: vec![Vector::zeros(); n],
+        }
+    }
+
+    /// Traction at face `i` for the boundary displacement `u_b` (eq. 4.52).
+    #[inline]
+    pub fn traction_at(&self, i: usize, u_b: &Vector) -> Vector {
+        let n = self.normal[i];
+        self.traction[i] - n * (self.stiffness[i] * n.dot(&(u_b - self.reference[i])))
+    }
 }
 
 impl PatchCondition {
@@ -33,6 +77,7 @@ impl PatchCondition {
             PatchCondition::Symmetry => "symmetry",
             PatchCondition::Empty => "empty",
             PatchCondition::Wedge(_) => "wedge",
+            PatchCondition::LinearisedContact(_) => "contact",
         }
     }
 }

@@ -15,7 +15,7 @@ pub mod direct;
 pub mod linear_solver;
 pub mod pcg_ic0;
 
-pub use boundary_conditions::{wedge_rotations, PatchCondition};
+pub use boundary_conditions::{wedge_rotations, LinearisedContact, PatchCondition};
 pub use least_squares_gradient::LeastSquaresGradient;
 pub use solid_momentum::{MomentumParams, SolidMomentum};
 

@@ -145,6 +145,13 @@ impl SolidMomentum {
                     }
                     PatchCondition::Wedge(r) => 0.5 * a * (1.0 - r[f - p.start][(c, c)]).abs(),
                     PatchCondition::Traction(_) | PatchCondition::Empty => 0.0,
+                    PatchCondition::LinearisedContact(lc) => {
+                        // penalty spring in series with the half cell (eq. 4.54 i)
+                        let i = f - p.start;
+                        let nc = lc.normal[i][c];
+                        let s = lc.stiffness[i] * self.dn[f] / self.k;
+                        a * s / (1.0 + s) * nc * nc
+                    }
                 };
             }
         }
@@ -184,6 +191,22 @@ impl SolidMomentum {
                     }
                     PatchCondition::Empty => self.u[o],
                     PatchCondition::Wedge(r) => r[f - p.start] * self.u[o],
+                    PatchCondition::LinearisedContact(lc) => {
+                        // (3.22–3.23) with the traction of eq. 4.52, solved for
+                        // the new normal derivative (eq. 4.53):
+                        // (I + s N) g = g + (t* − ε β N (u_extr − u_b*) − n·σ_b)/K
+                        let i = f - p.start;
+                        let g = self.snd_b[b];
+                        let grad_b = gp + n * (g - gp.transpose() * n).transpose();
+                        let sig_b = material.stress(&grad_b);
+                        let t_extr = lc.traction_at(i, &extrapolated);
+                        let r = g + (t_extr - sig_b * n) / self.k;
+                        let nc = lc.normal[i];
+                        let s = lc.stiffness[i] * self.dn[f] / self.k;
+                        let g_new = r - nc * (s / (1.0 + s) * nc.dot(&r));
+                        self.snd_b[b] = g_new;
+                        extrapolated + g_new * self.dn[f]
+                    }
                 };
             }
         }
@@ -256,6 +279,9 @@ impl SolidMomentum {
                         material.stress(&self.boundary_gradient(f, b, o, &n)) * area
                     }
                     PatchCondition::Traction(t) => t[f - p.start] * geom.face_mag[f],
+                    PatchCondition::LinearisedContact(lc) => {
+                        lc.traction_at(f - p.start, &self.u_b[b]) * geom.face_mag[f]
+                    }
                     PatchCondition::Symmetry | PatchCondition::NormalDisplacement(_) => {
                         let s = material.stress(&self.boundary_gradient(f, b, o, &n));
                         area * n.dot(&(s * n))

@@ -14,7 +14,7 @@ use contact_force::{
     ContactAlgorithm, ContactAlgorithmKind, ContactLaw, ContactStats, ContactTractions, Coupling,
     ExplicitRelaxation, PenaltyParams, SurfaceMaterial,
 };
-use fv_discretise::PatchCondition;
+use fv_discretise::{LinearisedContact, PatchCondition};
 use fv_mesh::{CellToPoint, Surface, Vector};
 
 /// A contact surface: one patch of one body.
@@ -50,6 +50,8 @@ pub struct ContactInterface {
     algorithm: Box<dyn ContactAlgorithm>,
     law: ContactLaw,
     coupling: ExplicitRelaxation,
+    /// Implicit coupling (thesis §4.5): linearised normal traction.
+    pub implicit: bool,
     /// Tractions, pressures and gaps of the last call.
     pub tractions: ContactTractions,
     /// Summary of the last call.
@@ -121,12 +123,7 @@ impl ContactSet {
         };
         for (ci, c) in case.contacts.iter().enumerate() {
             let key = format!("contact[{ci}]");
-            if c.coupling == CouplingName::Implicit {
-                return Err(src.error(
-                    &format!("{key}.coupling"),
-                    "coupling = \"implicit\" is not available yet in this version; use \"explicit\"",
-                ));
-            }
+            let implicit = c.coupling == CouplingName::Implicit;
             let algorithm_name = match c.algorithm {
                 AlgorithmName::SegmentToSegment => "segment-to-segment",
                 AlgorithmName::Pointwise => "pointwise",
@@ -186,7 +183,10 @@ impl ContactSet {
                     (!bodies[sb].rigid).then_some(&sm),
                 )
                 .map_err(|e| src.error(&key, e.to_string()))?;
-            let coupling = ExplicitRelaxation::new(c.relaxation_normal, c.relaxation_tangential)
+            // implicit: the normal traction is linearised, not relaxed (§4.5);
+            // the tangential traction stays explicit and relaxed
+            let normal_relaxation = if implicit { 1.0 } else { c.relaxation_normal };
+            let coupling = ExplicitRelaxation::new(normal_relaxation, c.relaxation_tangential)
                 .map_err(|e| src.error(&format!("{key}.relaxation"), e.to_string()))?;
             let detector = method
                 .detector(DetectParams::default())
@@ -206,6 +206,7 @@ impl ContactSet {
                 algorithm: kind.build(),
                 law,
                 coupling,
+                implicit,
                 tractions: ContactTractions::new(),
                 stats: ContactStats::default(),
             });
@@ -216,6 +217,27 @@ impl ContactSet {
     /// Whether there is any contact.
     pub fn is_empty(&self) -> bool {
         self.interfaces.is_empty()
+    }
+
+    /// Whether any contact uses implicit coupling (the matrix then changes
+    /// every outer iteration).
+    pub fn is_implicit(&self) -> bool {
+        self.interfaces.iter().any(|c| c.implicit)
+    }
+
+    /// Turns the contact patches of implicitly coupled contacts into
+    /// linearised contact conditions (called once, after the bodies are built).
+    pub fn prepare_conditions(&self, bodies: &mut [Body]) {
+        for ci in self.interfaces.iter().filter(|c| c.implicit) {
+            for side in [&ci.master, &ci.slave] {
+                let b = &mut bodies[side.body];
+                if !b.rigid {
+                    b.momentum.conditions[side.patch] = PatchCondition::LinearisedContact(
+                        LinearisedContact::new(side.surface.n_faces()),
+                    );
+                }
+            }
+        }
     }
 
     /// Moves one contact surface to the current displacement of its body.
@@ -270,13 +292,30 @@ impl ContactSet {
                 .apply(&ci.tractions, &mut ci.master.applied, &mut ci.slave.applied)
                 .map_err(|e| format!("contact {}: {e}", ci.slave_name))?;
             max_change = max_change.max(info.relative_change());
-            for side in [&ci.master, &ci.slave] {
+            let eps = ci.law.normal_penalty;
+            for (side, contact) in [
+                (&ci.master, &ci.tractions.master),
+                (&ci.slave, &ci.tractions.slave),
+            ] {
                 let b = &mut bodies[side.body];
                 if b.rigid {
                     continue;
                 }
-                if let PatchCondition::Traction(t) = &mut b.momentum.conditions[side.patch] {
-                    t.copy_from_slice(&side.applied);
+                let start = b.mesh.patches[side.patch].start - b.mesh.n_internal_faces();
+                match &mut b.momentum.conditions[side.patch] {
+                    PatchCondition::Traction(t) => t.copy_from_slice(&side.applied),
+                    PatchCondition::LinearisedContact(lc) => {
+                        // eq. 4.52 about the current state
+                        lc.traction.copy_from_slice(&side.applied);
+                        lc.normal.copy_from_slice(&side.surface.face_normals);
+                        for (k, beta) in lc.stiffness.iter_mut().zip(&contact.contact_fraction) {
+                            *k = eps * beta;
+                        }
+                        let n = lc.reference.len();
+                        lc.reference
+                            .copy_from_slice(&b.momentum.u_b[start..start + n]);
+                    }
+                    _ => {}
                 }
             }
         }

@@ -63,6 +63,9 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
     let start = Instant::now();
     let mut bodies = set_up(case)?;
     let mut contacts = ContactSet::new(case, &bodies)?;
+    contacts.prepare_conditions(&mut bodies);
+    // FVC_TRACE=1 prints the residual of every outer iteration (debugging aid)
+    let trace_outer = std::env::var_os("FVC_TRACE").is_some_and(|v| v == "1");
     let dir = if opts.no_files {
         None
     } else {
@@ -146,6 +149,9 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
             b.refresh_conditions(t);
         }
         let result = solver.solve_increment(&mut bodies, &mut contacts, |outer, res| {
+            if trace_outer {
+                eprintln!("  outer {outer}: residual {res:.3e}");
+            }
             if let Some(pb) = &bar {
                 if outer % 10 == 0 {
                     pb.set_message(format!("outer {outer} residual {res:.2e}"));

@@ -65,6 +65,13 @@ pub struct SegregatedSolver {
     relaxation: f64,
     tolerance: f64,
     max_outer: usize,
+    linear: LinearSettings,
+    /// Directions not solved (empty / wedge).
+    unsolved: [bool; 3],
+    /// Diagonal from the internal faces (global numbering).
+    internal_diag: Vec<f64>,
+    /// Diagonal of each component (workspace).
+    diag_work: [Vec<f64>; 3],
 }
 
 fn make_solver(s: &LinearSettings, n: usize) -> Box<dyn LinearSolver + Send> {
@@ -165,6 +172,10 @@ impl SegregatedSolver {
             relaxation: settings.relaxation,
             tolerance: settings.tolerance,
             max_outer: settings.max_outer,
+            linear: settings.linear,
+            unsolved: [false; 3],
+            internal_diag: vec![0.0; n],
+            diag_work: [vec![0.0; n], vec![0.0; n], vec![0.0; n]],
         }
     }
 
@@ -187,7 +198,8 @@ impl SegregatedSolver {
     ) -> Result<(), SolveError> {
         let base = &mut self.matrices[0];
         base.fill_zero();
-        let mut diag = vec![0.0; self.n];
+        self.internal_diag.clear();
+        self.internal_diag.resize(self.n, 0.0);
         {
             let v = base.values_mut();
             let mut g = 0;
@@ -196,61 +208,119 @@ impl SegregatedSolver {
                     let a = b.momentum.face_coefficient(&b.geom, f);
                     v[self.slots.upper[g] as usize] -= a;
                     v[self.slots.lower[g] as usize] -= a;
-                    diag[b.offset + b.mesh.owner[f] as usize] += a;
-                    diag[b.offset + b.mesh.neighbour[f] as usize] += a;
+                    self.internal_diag[b.offset + b.mesh.owner[f] as usize] += a;
+                    self.internal_diag[b.offset + b.mesh.neighbour[f] as usize] += a;
                     g += 1;
                 }
             }
         }
-        let empty = unsolved_directions(bodies);
-        let mut diags: Vec<Vec<f64>> = Vec::new();
-        let mut comp = [None; 3];
+        self.unsolved = unsolved_directions(bodies);
+        self.fill_diagonals(bodies, true)?;
+        let comp = self.dedupe_diagonals();
+        let template = self.matrices[0].clone();
+        self.matrices.truncate(1);
+        let n_matrices = comp.iter().flatten().max().map_or(1, |m| m + 1);
+        while self.matrices.len() < n_matrices {
+            self.matrices.push(template.clone());
+        }
+        self.component_matrix = comp;
+        while self.solvers.len() < self.matrices.len() {
+            self.solvers.push(make_solver(linear, self.n));
+        }
+        self.solvers.truncate(self.matrices.len());
+        self.write_diagonals_and_factorise()
+    }
+
+    /// The diagonal of every solved component: internal faces plus the
+    /// boundary contributions of every body (including the linearised
+    /// contact stiffness of implicit coupling). With `check`, a component
+    /// that gains nothing from the boundary is reported as unconstrained.
+    fn fill_diagonals(&mut self, bodies: &[Body], check: bool) -> Result<(), SolveError> {
         for c in 0..3 {
-            if empty[c] {
+            if self.unsolved[c] {
                 continue;
             }
-            let mut d = diag.clone();
+            let d = &mut self.diag_work[c];
+            d.clear();
+            d.extend_from_slice(&self.internal_diag);
             for b in bodies.iter().filter(|b| !b.rigid) {
                 let slice = &mut d[b.offset..b.offset + b.mesh.n_cells];
                 let before: f64 = slice.iter().sum();
                 b.momentum.add_boundary_diagonal(&b.mesh, &b.geom, c, slice);
                 let after: f64 = slice.iter().sum();
-                if !(after > before * (1.0 + 1e-12)) {
+                if check && !(after > before * (1.0 + 1e-12)) {
                     return Err(SolveError::Unconstrained {
                         body: b.name.clone(),
                         axis: ["x", "y", "z"][c],
                     });
                 }
             }
-            comp[c] = Some(match diags.iter().position(|e| *e == d) {
-                Some(i) => i,
-                None => {
-                    diags.push(d);
-                    diags.len() - 1
-                }
-            });
         }
-        let template = self.matrices[0].clone();
-        self.matrices.truncate(1);
-        while self.matrices.len() < diags.len() {
-            self.matrices.push(template.clone());
+        Ok(())
+    }
+
+    /// Matrix of each component: components with identical diagonals share one.
+    fn dedupe_diagonals(&self) -> [Option<usize>; 3] {
+        let mut comp: [Option<usize>; 3] = [None; 3];
+        let mut first: Vec<usize> = Vec::with_capacity(3);
+        for c in 0..3 {
+            if self.unsolved[c] {
+                continue;
+            }
+            comp[c] = Some(
+                match first
+                    .iter()
+                    .position(|&e| self.diag_work[e] == self.diag_work[c])
+                {
+                    Some(i) => i,
+                    None => {
+                        first.push(c);
+                        first.len() - 1
+                    }
+                },
+            );
         }
-        for (m, d) in self.matrices.iter_mut().zip(&diags) {
-            let di: Vec<u32> = m.diag_index().to_vec();
-            let v = m.values_mut();
-            for (i, &k) in di.iter().enumerate() {
-                v[k as usize] = d[i];
+        comp
+    }
+
+    /// Writes the component diagonals into their matrices and factorises.
+    fn write_diagonals_and_factorise(&mut self) -> Result<(), SolveError> {
+        for c in 0..3 {
+            let Some(mi) = self.component_matrix[c] else {
+                continue;
+            };
+            let m = &mut self.matrices[mi];
+            let n = m.n();
+            for i in 0..n {
+                let k = m.diag_index()[i] as usize;
+                m.values_mut()[k] = self.diag_work[c][i];
             }
         }
-        while self.solvers.len() < self.matrices.len() {
-            self.solvers.push(make_solver(linear, self.n));
-        }
-        self.solvers.truncate(self.matrices.len());
         for (s, m) in self.solvers.iter_mut().zip(&self.matrices) {
             s.factorise(m)?;
         }
-        self.component_matrix = comp;
         Ok(())
+    }
+
+    /// Implicit contact coupling: the contact stiffness changed, so every
+    /// solved component gets its own matrix (the normal stiffness splits
+    /// over the components as n_c²) and is refactorised.
+    fn refactorise_with_contact(&mut self, bodies: &[Body]) -> Result<(), SolveError> {
+        self.fill_diagonals(bodies, false)?;
+        let solved: Vec<usize> = (0..3).filter(|&c| !self.unsolved[c]).collect();
+        if self.matrices.len() < solved.len() {
+            let template = self.matrices[0].clone();
+            while self.matrices.len() < solved.len() {
+                self.matrices.push(template.clone());
+            }
+            while self.solvers.len() < self.matrices.len() {
+                self.solvers.push(make_solver(&self.linear, self.n));
+            }
+        }
+        for (i, &c) in solved.iter().enumerate() {
+            self.component_matrix[c] = Some(i);
+        }
+        self.write_diagonals_and_factorise()
     }
 
     /// Records the displacement at the start of an increment (the reference
@@ -272,7 +342,16 @@ impl SegregatedSolver {
     ) -> Result<(f64, usize), SolveError> {
         let mut linear_iterations = 0;
         if !contacts.is_empty() {
+            // boundary values consistent with the last solve, so that the
+            // contact surfaces (and u_b* of eq. 4.52) are not one step behind
+            for b in bodies.iter_mut().filter(|b| !b.rigid) {
+                let m = &mut b.momentum;
+                m.update_boundary_values(&b.mesh, &b.geom, b.material.as_ref());
+            }
             contacts.update(bodies).map_err(SolveError::Contact)?;
+            if contacts.is_implicit() {
+                self.refactorise_with_contact(bodies)?;
+            }
         }
         self.update_fields(bodies);
         for c in 0..3 {

@@ -46,6 +46,14 @@ pub struct LinearisedContact {
     pub normal: Vec<Vector>,
     /// u_b*: the boundary displacement at the last evaluation.
     pub reference: Vec<Vector>,
+    /// Displacement of the opposite body's cells since the last evaluation
+    /// (GGI-weighted, the u_Ph − u_Ph* of eq. 4.69; zero against a rigid body).
+    pub opposite_shift: Vec<Vector>,
+    /// The opposite surface is rigid: the penalty spring is grounded and its
+    /// stiffness goes to the diagonal here. Otherwise the spring joins two
+    /// cells of the global system and the caller assembles it (diagonal and
+    /// cross-body coefficient, eq. 4.69 with the virtual neighbour 4.72).
+    pub grounded: bool,
 }
 
 impl LinearisedContact {
@@ -56,14 +64,17 @@ impl LinearisedContact {
             stiffness: vec![0.0; n],
             normal: vec![Vector::zeros(); n],
             reference: vec![Vector::zeros(); n],
+            opposite_shift: vec![Vector::zeros(); n],
+            grounded: true,
         }
     }
 
-    /// Traction at face `i` for the boundary displacement `u_b` (eq. 4.52).
+    /// Traction at face `i` for the boundary displacement `u_b` (eqs. 4.52, 4.60–4.61).
     #[inline]
     pub fn traction_at(&self, i: usize, u_b: &Vector) -> Vector {
         let n = self.normal[i];
-        self.traction[i] - n * (self.stiffness[i] * n.dot(&(u_b - self.reference[i])))
+        let approach = u_b - self.reference[i] - self.opposite_shift[i];
+        self.traction[i] - n * (self.stiffness[i] * n.dot(&approach))
     }
 }
 

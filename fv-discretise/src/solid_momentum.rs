@@ -117,6 +117,13 @@ impl SolidMomentum {
         self.gradient.update(mesh, geom, &passive);
     }
 
+    /// d_f·n_f of face f (boundary faces: the normal distance |d_n| of the
+    /// owner centre), clipped as in the matrix coefficients.
+    #[inline]
+    pub fn normal_distance(&self, f: usize) -> f64 {
+        self.dn[f]
+    }
+
     /// Implicit Laplacian coefficient K|Γ_f|/(d_f·n_f) of internal face f.
     #[inline]
     pub fn face_coefficient(&self, geom: &MeshGeometry, f: usize) -> f64 {
@@ -145,6 +152,7 @@ impl SolidMomentum {
                     }
                     PatchCondition::Wedge(r) => 0.5 * a * (1.0 - r[f - p.start][(c, c)]).abs(),
                     PatchCondition::Traction(_) | PatchCondition::Empty => 0.0,
+                    PatchCondition::LinearisedContact(lc) if !lc.grounded => 0.0,
                     PatchCondition::LinearisedContact(lc) => {
                         // penalty spring in series with the half cell (eq. 4.54 i)
                         let i = f - p.start;

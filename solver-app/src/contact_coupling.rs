@@ -17,6 +17,23 @@ use contact_force::{
 use fv_discretise::{LinearisedContact, PatchCondition};
 use fv_mesh::{CellToPoint, Surface, Vector};
 
+/// Fraction of a face's previous linearisation contact fraction kept when
+/// the face opens (see [`ContactSide::beta`]): without it a pair of
+/// deformable bodies overshoots, separates, and closes again forever.
+const BETA_MEMORY: f64 = 0.5;
+
+/// A penalty spring between two cells of the global system (implicit
+/// coupling of two deformable bodies).
+#[derive(Debug, Clone, Copy)]
+pub struct CellSpring {
+    /// Global cell numbers (master side, slave side).
+    pub cells: (u32, u32),
+    /// Spring stiffness, N/m.
+    pub stiffness: f64,
+    /// Direction of the spring (the master normal): component c carries stiffness·n_c².
+    pub normal: Vector,
+}
+
 /// A contact surface: one patch of one body.
 pub struct ContactSide {
     /// Body index.
@@ -33,6 +50,80 @@ pub struct ContactSide {
     current: Vec<Vector>,
     /// Applied (relaxed) traction per face.
     pub applied: Vec<Vector>,
+    /// GGI-weighted displacement of the opposite body's owner cells at the
+    /// last contact evaluation (implicit coupling of deformable bodies).
+    opposite_reference: Vec<Vector>,
+    /// δ/K of the opposite surface seen by each face (GGI-weighted; 0 when
+    /// the opposite body is rigid), eq. 4.64.
+    opposite_compliance: Vec<f64>,
+    /// Workspace.
+    current_work: Vec<Vector>,
+    /// Contact fraction β of the linearisation: the current one or, if
+    /// larger, the previous one times [`BETA_MEMORY`], so a face that opened
+    /// in one iteration keeps a fading penalty spring in the matrix for a
+    /// few more (the springs only shape the path; the converged traction is
+    /// the contact algorithm's).
+    beta: Vec<f64>,
+}
+
+/// GGI-weighted displacement of the opposite owner cells, per face of the
+/// master (`master_side`) or the slave, into `out`.
+fn opposite_cells_u(
+    ci: &ContactInterface,
+    bodies: &[Body],
+    master_side: bool,
+    out: &mut [Vector],
+) {
+    let (this, other) = if master_side {
+        (&ci.master, &ci.slave)
+    } else {
+        (&ci.slave, &ci.master)
+    };
+    let b = &bodies[other.body];
+    let start = b.mesh.patches[other.patch].start;
+    let ggi = &ci.tractions.ggi;
+    for (i, o) in out.iter_mut().enumerate().take(this.surface.n_faces()) {
+        let (faces, w) = if master_side {
+            ggi.master_row(i)
+        } else {
+            ggi.slave_row(i)
+        };
+        let (mut sum, mut den) = (Vector::zeros(), 0.0);
+        for (&j, &w) in faces.iter().zip(w) {
+            let cell = b.mesh.owner[start + j as usize] as usize;
+            sum += b.momentum.u[cell] * w;
+            den += w;
+        }
+        *o = if den > 0.0 { sum / den } else { Vector::zeros() };
+    }
+}
+
+/// Fills [`ContactSide::opposite_compliance`] of both sides of an interface
+/// from the GGI weights of the last contact evaluation.
+fn opposite_compliance(ci: &mut ContactInterface, bodies: &[Body]) {
+    let compliance = |b: &Body, side: &ContactSide, i: usize| {
+        if b.rigid {
+            return 0.0;
+        }
+        let f = b.mesh.patches[side.patch].start + i;
+        b.momentum.normal_distance(f) / b.momentum.k
+    };
+    let (bm, bs) = (&bodies[ci.master.body], &bodies[ci.slave.body]);
+    let ggi = &ci.tractions.ggi;
+    for m in 0..ci.master.surface.n_faces() {
+        let (faces, w) = ggi.master_row(m);
+        let (num, den) = faces.iter().zip(w).fold((0.0, 0.0), |(n, d), (&s, &w)| {
+            (n + w * compliance(bs, &ci.slave, s as usize), d + w)
+        });
+        ci.master.opposite_compliance[m] = if den > 0.0 { num / den } else { 0.0 };
+    }
+    for s in 0..ci.slave.surface.n_faces() {
+        let (faces, w) = ggi.slave_row(s);
+        let (num, den) = faces.iter().zip(w).fold((0.0, 0.0), |(n, d), (&m, &w)| {
+            (n + w * compliance(bm, &ci.master, m as usize), d + w)
+        });
+        ci.slave.opposite_compliance[s] = if den > 0.0 { num / den } else { 0.0 };
+    }
 }
 
 /// One `[[contact]]` pair with its detector, algorithm and coupling state.
@@ -49,6 +140,11 @@ pub struct ContactInterface {
     pairs: CandidatePairs,
     algorithm: Box<dyn ContactAlgorithm>,
     law: ContactLaw,
+    params: PenaltyParams,
+    /// (K, G, Ω/Γ) per face of the master and the slave; `None` = rigid.
+    materials: [Option<FaceMaterial>; 2],
+    /// Whether the penalty was evaluated on the contacting faces of this increment.
+    penalty_localised: bool,
     coupling: ExplicitRelaxation,
     /// Implicit coupling (thesis §4.5): linearised normal traction.
     pub implicit: bool,
@@ -98,7 +194,10 @@ fn side(
     Ok((bi, pi))
 }
 
-fn surface_material(body: &Body, surface: &Surface) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+/// K, G and Ω/Γ per face of a contact surface (inputs of eqs. 4.4a/4.4b).
+type FaceMaterial = (Vec<f64>, Vec<f64>, Vec<f64>);
+
+fn surface_material(body: &Body, surface: &Surface) -> FaceMaterial {
     let n = surface.n_faces();
     let k = vec![body.material.implicit_stiffness(); n];
     let g = vec![body.material.shear_modulus(); n];
@@ -111,6 +210,48 @@ fn surface_material(body: &Body, surface: &Surface) -> (Vec<f64>, Vec<f64>, Vec<
         })
         .collect();
     (k, g, len)
+}
+
+/// Penalty parameters (eqs. 4.4a/4.4b) from the faces of both deformable
+/// surfaces, or, with `pairs`, from the faces that have a candidate partner
+/// only: Γ_c and Ω_c are averages over the *contacting* faces and cells
+/// (thesis §4.1.2), so a surface refined at the contact gets the penalty of
+/// its contact cells, not of its coarse far field.
+fn penalty_law(
+    params: &PenaltyParams,
+    master: &Surface,
+    slave: &Surface,
+    materials: &[Option<FaceMaterial>; 2],
+    pairs: Option<&CandidatePairs>,
+) -> Result<ContactLaw, contact_force::ContactError> {
+    let masked = |side: usize, n: usize| -> Option<Vec<f64>> {
+        let pairs = pairs?;
+        let mut keep = vec![false; n];
+        for (m, s) in pairs.iter() {
+            keep[if side == 0 { m } else { s } as usize] = true;
+        }
+        let k = &materials[side].as_ref()?.0;
+        Some(
+            k.iter()
+                .zip(&keep)
+                .map(|(&k, &keep)| if keep { k } else { 0.0 })
+                .collect(),
+        )
+    };
+    let km = masked(0, master.n_faces());
+    let ks = masked(1, slave.n_faces());
+    fn view<'a>(
+        material: &'a Option<FaceMaterial>,
+        k: &'a Option<Vec<f64>>,
+    ) -> Option<SurfaceMaterial<'a>> {
+        material.as_ref().map(|(kf, g, l)| SurfaceMaterial {
+            stiffness: k.as_deref().unwrap_or(kf),
+            shear_modulus: g,
+            cell_length: l,
+        })
+    }
+    let (mm, sm) = (view(&materials[0], &km), view(&materials[1], &ks));
+    params.contact_law(master, mm.as_ref(), slave, sm.as_ref())
 }
 
 impl ContactSet {
@@ -152,36 +293,26 @@ impl ContactSet {
                     point_u: vec![Vector::zeros(); n],
                     current: surface.points.clone(),
                     applied: vec![Vector::zeros(); surface.n_faces()],
+                    opposite_compliance: vec![0.0; surface.n_faces()],
+                    opposite_reference: vec![Vector::zeros(); surface.n_faces()],
+                    current_work: Vec::new(),
+                    beta: vec![0.0; surface.n_faces()],
                     surface,
                 })
             };
             let master = make_side(mb, mp)?;
             let slave = make_side(sb, sp)?;
-            let (mk, mg, ml) = surface_material(&bodies[mb], &master.surface);
-            let (sk, sg, sl) = surface_material(&bodies[sb], &slave.surface);
-            let mm = SurfaceMaterial {
-                stiffness: &mk,
-                shear_modulus: &mg,
-                cell_length: &ml,
-            };
-            let sm = SurfaceMaterial {
-                stiffness: &sk,
-                shear_modulus: &sg,
-                cell_length: &sl,
-            };
+            let materials = [
+                (!bodies[mb].rigid).then(|| surface_material(&bodies[mb], &master.surface)),
+                (!bodies[sb].rigid).then(|| surface_material(&bodies[sb], &slave.surface)),
+            ];
             let params = PenaltyParams {
                 penalty_scale: c.penalty_scale,
                 tangential_penalty_scale: c.tangential_penalty_scale,
                 friction: c.friction,
                 ..Default::default()
             };
-            let law = params
-                .contact_law(
-                    &master.surface,
-                    (!bodies[mb].rigid).then_some(&mm),
-                    &slave.surface,
-                    (!bodies[sb].rigid).then_some(&sm),
-                )
+            let law = penalty_law(&params, &master.surface, &slave.surface, &materials, None)
                 .map_err(|e| src.error(&key, e.to_string()))?;
             // implicit: the normal traction is linearised, not relaxed (§4.5);
             // the tangential traction stays explicit and relaxed
@@ -205,6 +336,9 @@ impl ContactSet {
                 pairs: CandidatePairs::new(),
                 algorithm: kind.build(),
                 law,
+                params,
+                materials,
+                penalty_localised: false,
                 coupling,
                 implicit,
                 tractions: ContactTractions::new(),
@@ -229,12 +363,90 @@ impl ContactSet {
     /// linearised contact conditions (called once, after the bodies are built).
     pub fn prepare_conditions(&self, bodies: &mut [Body]) {
         for ci in self.interfaces.iter().filter(|c| c.implicit) {
+            let grounded = bodies[ci.master.body].rigid || bodies[ci.slave.body].rigid;
             for side in [&ci.master, &ci.slave] {
                 let b = &mut bodies[side.body];
                 if !b.rigid {
-                    b.momentum.conditions[side.patch] = PatchCondition::LinearisedContact(
-                        LinearisedContact::new(side.surface.n_faces()),
-                    );
+                    let mut lc = LinearisedContact::new(side.surface.n_faces());
+                    lc.grounded = grounded;
+                    b.momentum.conditions[side.patch] = PatchCondition::LinearisedContact(lc);
+                }
+            }
+        }
+    }
+
+    /// Implicit coupling of deformable bodies: how far the opposite cells
+    /// moved since the last contact evaluation, into every linearised contact
+    /// condition (u_Ph − u_Ph* of eq. 4.69), before the boundary values are
+    /// refreshed.
+    pub fn track_opposite_cells(&mut self, bodies: &mut [Body]) {
+        for ci in self.interfaces.iter_mut().filter(|c| c.implicit) {
+            if bodies[ci.master.body].rigid || bodies[ci.slave.body].rigid {
+                continue;
+            }
+            for master_side in [true, false] {
+                let mut now = std::mem::take(&mut ci.master.current_work);
+                let n = if master_side {
+                    ci.master.surface.n_faces()
+                } else {
+                    ci.slave.surface.n_faces()
+                };
+                now.resize(n, Vector::zeros());
+                opposite_cells_u(ci, bodies, master_side, &mut now);
+                let side = if master_side { &ci.master } else { &ci.slave };
+                let (body, patch) = (side.body, side.patch);
+                if let PatchCondition::LinearisedContact(lc) =
+                    &mut bodies[body].momentum.conditions[patch]
+                {
+                    for ((s, u), r) in lc
+                        .opposite_shift
+                        .iter_mut()
+                        .zip(&now)
+                        .zip(&side.opposite_reference)
+                    {
+                        *s = u - r;
+                    }
+                }
+                ci.master.current_work = now;
+            }
+        }
+    }
+
+    /// The penalty springs between cells of two deformable bodies in
+    /// implicit contact (thesis eqs. 4.60–4.72): for every overlapping pair
+    /// of master face m and slave face s, a spring along the master normal
+    /// joining the owner cells, of stiffness
+    /// `ω_ms β_m / (δ_m/K_m + 1/ε_n + δ_s/K_s)` (GGI overlap ω_ms, contact
+    /// fraction β_m: the half cells and the penalty in series). Global cell
+    /// numbers. Clears `out` first.
+    pub fn cell_springs(&self, bodies: &[Body], out: &mut Vec<CellSpring>) {
+        out.clear();
+        for ci in self.interfaces.iter().filter(|c| c.implicit) {
+            let (bm, bs) = (&bodies[ci.master.body], &bodies[ci.slave.body]);
+            if bm.rigid || bs.rigid {
+                continue;
+            }
+            let inv_eps = 1.0 / ci.law.normal_penalty;
+            let face = |b: &Body, side: &ContactSide, i: usize| {
+                let f = b.mesh.patches[side.patch].start + i;
+                let cell = b.offset + b.mesh.owner[f] as usize;
+                (cell as u32, b.momentum.normal_distance(f) / b.momentum.k)
+            };
+            for m in 0..ci.master.surface.n_faces() {
+                let beta = ci.master.beta[m];
+                if !(beta > 0.0) {
+                    continue;
+                }
+                let (cm, compliance_m) = face(bm, &ci.master, m);
+                let normal = ci.master.surface.face_normals[m];
+                let (slaves, overlaps) = ci.tractions.ggi.master_row(m);
+                for (&s, &w) in slaves.iter().zip(overlaps) {
+                    let (cs, compliance_s) = face(bs, &ci.slave, s as usize);
+                    out.push(CellSpring {
+                        cells: (cm, cs),
+                        stiffness: w * beta / (compliance_m + inv_eps + compliance_s),
+                        normal,
+                    });
                 }
             }
         }
@@ -277,6 +489,19 @@ impl ContactSet {
             ci.detector
                 .detect(&ci.master.surface, &ci.slave.surface, &mut ci.pairs)
                 .map_err(|e| format!("contact {}: detection: {e}", ci.slave_name))?;
+            if !ci.penalty_localised && !ci.pairs.is_empty() {
+                // first detection of the increment: penalty of the contacting faces
+                if let Ok(law) = penalty_law(
+                    &ci.params,
+                    &ci.master.surface,
+                    &ci.slave.surface,
+                    &ci.materials,
+                    Some(&ci.pairs),
+                ) {
+                    ci.law = law;
+                }
+                ci.penalty_localised = true;
+            }
             ci.stats = ci
                 .algorithm
                 .compute(
@@ -292,11 +517,38 @@ impl ContactSet {
                 .apply(&ci.tractions, &mut ci.master.applied, &mut ci.slave.applied)
                 .map_err(|e| format!("contact {}: {e}", ci.slave_name))?;
             max_change = max_change.max(info.relative_change());
+            if std::env::var_os("FVC_TRACE").is_some_and(|v| v == "2") {
+                eprintln!(
+                    "    contact {}: force {:.6e} max pen {:.4e} area {:.4e} eps {:.3e}",
+                    ci.slave_name,
+                    ci.stats.normal_force,
+                    ci.stats.max_penetration,
+                    ci.stats.contact_area,
+                    ci.law.normal_penalty
+                );
+            }
             let eps = ci.law.normal_penalty;
-            for (side, contact) in [
-                (&ci.master, &ci.tractions.master),
-                (&ci.slave, &ci.tractions.slave),
-            ] {
+            let deformable_pair = !bodies[ci.master.body].rigid && !bodies[ci.slave.body].rigid;
+            if ci.implicit {
+                for (side, fraction) in [
+                    (&mut ci.master, &ci.tractions.master),
+                    (&mut ci.slave, &ci.tractions.slave),
+                ] {
+                    for (b, &c) in side.beta.iter_mut().zip(&fraction.contact_fraction) {
+                        *b = (*b * BETA_MEMORY).max(c);
+                    }
+                }
+                opposite_compliance(ci, bodies);
+                if deformable_pair {
+                    let mut r = std::mem::take(&mut ci.master.opposite_reference);
+                    opposite_cells_u(ci, bodies, true, &mut r);
+                    ci.master.opposite_reference = r;
+                    let mut r = std::mem::take(&mut ci.slave.opposite_reference);
+                    opposite_cells_u(ci, bodies, false, &mut r);
+                    ci.slave.opposite_reference = r;
+                }
+            }
+            for side in [&ci.master, &ci.slave] {
                 let b = &mut bodies[side.body];
                 if b.rigid {
                     continue;
@@ -308,12 +560,22 @@ impl ContactSet {
                         // eq. 4.52 about the current state
                         lc.traction.copy_from_slice(&side.applied);
                         lc.normal.copy_from_slice(&side.surface.face_normals);
-                        for (k, beta) in lc.stiffness.iter_mut().zip(&contact.contact_fraction) {
-                            *k = eps * beta;
+                        // the penalty in series with the opposite half cell
+                        // (c_h of eqs. 4.64, 4.67): the opposite cell, not its
+                        // face, is what stays put while this face is solved
+                        for ((k, beta), ch) in lc
+                            .stiffness
+                            .iter_mut()
+                            .zip(&side.beta)
+                            .zip(&side.opposite_compliance)
+                        {
+                            let c = eps * beta;
+                            *k = if c > 0.0 { c / (1.0 + c * ch) } else { 0.0 };
                         }
                         let n = lc.reference.len();
                         lc.reference
                             .copy_from_slice(&b.momentum.u_b[start..start + n]);
+                        lc.opposite_shift.iter_mut().for_each(|v| *v = Vector::zeros());
                     }
                     _ => {}
                 }
@@ -327,6 +589,9 @@ impl ContactSet {
         for ci in &mut self.interfaces {
             ci.algorithm
                 .commit_increment(&ci.master.surface, &ci.slave.surface);
+            ci.penalty_localised = false;
+            ci.master.beta.iter_mut().for_each(|b| *b = 0.0);
+            ci.slave.beta.iter_mut().for_each(|b| *b = 0.0);
         }
     }
 }

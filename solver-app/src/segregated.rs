@@ -2,7 +2,7 @@
 //! system for all deformable bodies, outer (Picard) iterations, and one
 //! linear solve per displacement component.
 use crate::case::{LinearMethod, LinearSettings, SolverSettings};
-use crate::contact_coupling::ContactSet;
+use crate::contact_coupling::{CellSpring, ContactSet};
 use crate::model::Body;
 use fv_discretise::{CsrMatrix, FaceSlots, LinearSolver, LinearSolverError, MomentumParams};
 use fv_mesh::Vector;
@@ -72,6 +72,13 @@ pub struct SegregatedSolver {
     internal_diag: Vec<f64>,
     /// Diagonal of each component (workspace).
     diag_work: [Vec<f64>; 3],
+    /// Penalty springs between deformable bodies (implicit contact, workspace).
+    springs: Vec<CellSpring>,
+    /// (row, col) of the springs' matrix entries, both orders (workspace).
+    spring_entries: Vec<(u32, u32)>,
+    /// Value indices of the springs' entries in the current matrices.
+    spring_slots: Vec<u32>,
+    new_spring_slots: Vec<u32>,
 }
 
 fn make_solver(s: &LinearSettings, n: usize) -> Box<dyn LinearSolver + Send> {
@@ -176,6 +183,10 @@ impl SegregatedSolver {
             unsolved: [false; 3],
             internal_diag: vec![0.0; n],
             diag_work: [vec![0.0; n], vec![0.0; n], vec![0.0; n]],
+            springs: Vec::new(),
+            spring_entries: Vec::new(),
+            spring_slots: Vec::new(),
+            new_spring_slots: Vec::new(),
         }
     }
 
@@ -304,9 +315,25 @@ impl SegregatedSolver {
 
     /// Implicit contact coupling: the contact stiffness changed, so every
     /// solved component gets its own matrix (the normal stiffness splits
-    /// over the components as n_c²) and is refactorised.
-    fn refactorise_with_contact(&mut self, bodies: &[Body]) -> Result<(), SolveError> {
+    /// over the components as n_c²), the penalty springs between deformable
+    /// bodies enter as cross-body coefficients (the pattern grows when new
+    /// cell pairs come into contact; it never shrinks), and every matrix is
+    /// refactorised.
+    fn refactorise_with_contact(
+        &mut self,
+        bodies: &[Body],
+        contacts: &ContactSet,
+    ) -> Result<(), SolveError> {
         self.fill_diagonals(bodies, false)?;
+        contacts.cell_springs(bodies, &mut self.springs);
+        for sp in &self.springs {
+            let (a, b) = (sp.cells.0 as usize, sp.cells.1 as usize);
+            for c in 0..3 {
+                let k = sp.stiffness * sp.normal[c] * sp.normal[c];
+                self.diag_work[c][a] += k;
+                self.diag_work[c][b] += k;
+            }
+        }
         let solved: Vec<usize> = (0..3).filter(|&c| !self.unsolved[c]).collect();
         if self.matrices.len() < solved.len() {
             let template = self.matrices[0].clone();
@@ -319,6 +346,33 @@ impl SegregatedSolver {
         }
         for (i, &c) in solved.iter().enumerate() {
             self.component_matrix[c] = Some(i);
+        }
+        // cross-body coefficients: remove last iteration's, add this one's
+        self.spring_entries.clear();
+        for sp in &self.springs {
+            self.spring_entries.push(sp.cells);
+            self.spring_entries.push((sp.cells.1, sp.cells.0));
+        }
+        for (mi, m) in self.matrices.iter_mut().enumerate() {
+            for &k in &self.spring_slots {
+                m.values_mut()[k as usize] = 0.0;
+            }
+            let growth = m.add_entries(&self.spring_entries)?;
+            if mi == 0 {
+                // every matrix has the same pattern and grows the same way
+                self.slots.remap(&growth);
+                self.new_spring_slots.clear();
+                self.new_spring_slots.extend_from_slice(&growth.slots);
+            }
+        }
+        std::mem::swap(&mut self.spring_slots, &mut self.new_spring_slots);
+        for (&c, mi) in solved.iter().zip(0..) {
+            let v = self.matrices[mi].values_mut();
+            for (sp, slots) in self.springs.iter().zip(self.spring_slots.chunks_exact(2)) {
+                let k = sp.stiffness * sp.normal[c] * sp.normal[c];
+                v[slots[0] as usize] -= k;
+                v[slots[1] as usize] -= k;
+            }
         }
         self.write_diagonals_and_factorise()
     }
@@ -344,13 +398,14 @@ impl SegregatedSolver {
         if !contacts.is_empty() {
             // boundary values consistent with the last solve, so that the
             // contact surfaces (and u_b* of eq. 4.52) are not one step behind
+            contacts.track_opposite_cells(bodies);
             for b in bodies.iter_mut().filter(|b| !b.rigid) {
                 let m = &mut b.momentum;
                 m.update_boundary_values(&b.mesh, &b.geom, b.material.as_ref());
             }
             contacts.update(bodies).map_err(SolveError::Contact)?;
             if contacts.is_implicit() {
-                self.refactorise_with_contact(bodies)?;
+                self.refactorise_with_contact(bodies, contacts)?;
             }
         }
         self.update_fields(bodies);

@@ -68,12 +68,7 @@ pub struct ContactSide {
 
 /// GGI-weighted displacement of the opposite owner cells, per face of the
 /// master (`master_side`) or the slave, into `out`.
-fn opposite_cells_u(
-    ci: &ContactInterface,
-    bodies: &[Body],
-    master_side: bool,
-    out: &mut [Vector],
-) {
+fn opposite_cells_u(ci: &ContactInterface, bodies: &[Body], master_side: bool, out: &mut [Vector]) {
     let (this, other) = if master_side {
         (&ci.master, &ci.slave)
     } else {
@@ -94,7 +89,11 @@ fn opposite_cells_u(
             sum += b.momentum.u[cell] * w;
             den += w;
         }
-        *o = if den > 0.0 { sum / den } else { Vector::zeros() };
+        *o = if den > 0.0 {
+            sum / den
+        } else {
+            Vector::zeros()
+        };
     }
 }
 
@@ -575,7 +574,9 @@ impl ContactSet {
                         let n = lc.reference.len();
                         lc.reference
                             .copy_from_slice(&b.momentum.u_b[start..start + n]);
-                        lc.opposite_shift.iter_mut().for_each(|v| *v = Vector::zeros());
+                        lc.opposite_shift
+                            .iter_mut()
+                            .for_each(|v| *v = Vector::zeros());
                     }
                     _ => {}
                 }

@@ -274,11 +274,11 @@ impl SegregatedSolver {
     fn dedupe_diagonals(&self) -> [Option<usize>; 3] {
         let mut comp: [Option<usize>; 3] = [None; 3];
         let mut first: Vec<usize> = Vec::with_capacity(3);
-        for c in 0..3 {
+        for (c, slot) in comp.iter_mut().enumerate() {
             if self.unsolved[c] {
                 continue;
             }
-            comp[c] = Some(
+            *slot = Some(
                 match first
                     .iter()
                     .position(|&e| self.diag_work[e] == self.diag_work[c])

@@ -200,7 +200,7 @@ fn ten_malformed_inputs_exit_2_with_precise_messages() {
 }
 
 #[test]
-fn implicit_contact_coupling_is_refused_clearly_until_available() {
+fn a_contact_patch_with_its_own_boundary_condition_is_refused() {
     let dir = tempfile::tempdir().unwrap();
     let two = GOOD.to_string()
         + r#"
@@ -214,11 +214,6 @@ master = "plate/ymin"
 slave = "block/xmax"
 coupling = "implicit"
 "#;
-    expect_input_error(
-        dir.path(),
-        two.as_bytes(),
-        &["case.toml:26", "contact[0].coupling", "not available yet"],
-    );
     // a contact patch may not carry a boundary condition of its own
     let own = two.replace(
         "slave = \"block/xmax\"\ncoupling = \"implicit\"",

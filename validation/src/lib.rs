@@ -3,6 +3,7 @@
 #![warn(missing_docs)]
 
 pub mod analytical;
+pub mod benchmarks;
 
 use std::path::Path;
 

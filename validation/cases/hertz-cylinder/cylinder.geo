@@ -26,20 +26,20 @@ R = 8.0;        // radius
 a = 3.5;        // inner rectangle: half-width
 c = 3.5;        //                  depth
 t = 1.0;        // thickness (z)
-tc = 0.11;      // contact-zone half-angle, rad (arc ±0.88 m)
-xt = 1.2;       // half-width of the central column at y = 0
+tc = 0.055;     // contact-zone half-angle, rad (arc ±0.44 m)
+xt = 1.0;       // half-width of the central column at y = 0
 
-nc = 13 * refinement;   // faces on the contact-zone arc (coarse 0.135 m)
+nc = 13 * refinement;   // faces on the contact-zone arc (coarse 0.068 m)
 ns = 12 * refinement;   // faces on each side of it, along the bottom arc
 ny = 13 * refinement;   // along the side arcs and the rectangle height
 nr = 18 * refinement;   // radial, rectangle to arc
 // geometric ratios (coarse values; the fine mesh takes their square roots):
-rt = 1.1754402 ^ (1 / refinement);  // side arcs: first face 1.175 × 0.135 m, ratio per face
-q = 0.9366441 ^ (1 / refinement);   // contact-zone radial lines: 0.41 m at the rectangle → 0.135 m at the arc
+rt = 1.284 ^ (1 / refinement);     // side arcs: geometric growth per face away from the contact zone
+q = 0.8826 ^ (1 / refinement);      // contact-zone radial lines: about 0.55 m at the rectangle → 0.07 m at the arc
 pv = 0.92 ^ (1 / refinement);       // rectangle height, finer toward its bottom
 
 s = Sqrt(0.5);
-xc = c * Tan(tc);
+xc = 0.5;       // central column half-width at the rectangle bottom
 Point(1) = {0, 0, 0};
 Point(2) = {-a, 0, 0};                      // A  top-left of the rectangle
 Point(3) = { a, 0, 0};                      // B

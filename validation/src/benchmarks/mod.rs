@@ -1,0 +1,41 @@
+//! The benchmarks of `../shared/benchmarks/README.md` as functions that run
+//! a case and return what it measured; the tests assert on these figures
+//! and the validation report plots them.
+pub mod hertz_cylinder;
+
+use std::path::{Path, PathBuf};
+
+/// Folder of the project's benchmark cases (`validation/cases`).
+pub fn cases_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("cases")
+}
+
+/// Cost figures of one run.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct RunCost {
+    /// Outer iterations summed over the increments.
+    pub outer_iterations: usize,
+    /// Increments.
+    pub increments: usize,
+    /// Wall time of the run, s.
+    pub wall_seconds: f64,
+    /// Cells of the deformable bodies.
+    pub cells: usize,
+}
+
+impl RunCost {
+    /// From a run's summary.
+    pub fn of(out: &solver_app::run::RunOutcome) -> Self {
+        RunCost {
+            outer_iterations: out.summary.outer_iterations,
+            increments: out.summary.increments,
+            wall_seconds: out.summary.wall_seconds,
+            cells: out.summary.cells,
+        }
+    }
+
+    /// Microseconds per cell per outer iteration.
+    pub fn us_per_cell_iteration(&self) -> f64 {
+        1e6 * self.wall_seconds / (self.cells.max(1) * self.outer_iterations.max(1)) as f64
+    }
+}

@@ -1,13 +1,33 @@
-//! Constitutive models behind one trait ([`Material`]).
+//! Constitutive models.
+//!
+//! - [`Material`]: stateless small-strain stress from the total displacement
+//!   gradient (Hooke, eq. 3.17).
+//! - [`LargeStrainMaterial`]: the incremental updated Lagrangian form
+//!   (eqs. 2.22–2.31): Cauchy stress of every cell from the relative
+//!   deformation gradient f = I + (∇Δu)ᵀ of the current increment applied to
+//!   a committed per-cell [`MaterialState`]; neo-Hookean ([`NeoHookean`],
+//!   eq. 2.25) and neo-Hookean J2 plasticity ([`NeoHookeanPlastic`],
+//!   eqs. 2.28–2.31) with [`Hardening`]. [`LinearElastic`] implements both.
 //!
 //! Tensor convention (as OpenFOAM and the thesis): the displacement gradient
-//! is `(∇u)_ij = ∂u_j/∂x_i`; stresses are symmetric Cauchy tensors, tension
-//! positive.
+//! is `(∇u)_ij = ∂u_j/∂x_i`, so the deformation gradient is F = I + (∇u)ᵀ;
+//! stresses are symmetric Cauchy tensors, tension positive.
 #![warn(missing_docs)]
 
+mod hardening;
+mod large_strain;
 mod linear_elastic;
+mod neo_hookean;
+mod neo_hookean_plastic;
 
+pub use hardening::Hardening;
+pub use large_strain::{
+    grad_du_in_updated, relative_deformation_gradient, updated_lagrangian_stress,
+    LargeStrainMaterial, MaterialState, PointState,
+};
 pub use linear_elastic::LinearElastic;
+pub use neo_hookean::NeoHookean;
+pub use neo_hookean_plastic::NeoHookeanPlastic;
 
 /// 3×3 tensor.
 pub type Tensor = nalgebra::Matrix3<f64>;
@@ -24,6 +44,34 @@ pub enum MaterialError {
         value: f64,
         /// What it must satisfy.
         requirement: &'static str,
+    },
+    /// A table parameter has no rows.
+    #[error("{name} is empty: give at least one row")]
+    EmptyTable {
+        /// Parameter name as in the case file.
+        name: &'static str,
+    },
+    /// One entry of a table parameter is out of its admissible range.
+    #[error("{name}[{row}][{column}] = {value}: {requirement}")]
+    InvalidTableEntry {
+        /// Parameter name as in the case file.
+        name: &'static str,
+        /// Row index (from 0).
+        row: usize,
+        /// Column index (from 0).
+        column: usize,
+        /// Given value.
+        value: f64,
+        /// What it must satisfy.
+        requirement: &'static str,
+    },
+    /// The deformation of a cell is not invertible (det f ≤ 0, eq. 2.23).
+    #[error("cell {cell}: relative Jacobian det f = {jacobian} is not positive (the increment inverts the cell)")]
+    NonPositiveJacobian {
+        /// Cell index.
+        cell: usize,
+        /// det f of the increment.
+        jacobian: f64,
     },
 }
 

@@ -22,6 +22,13 @@ use fv_mesh::{CellToPoint, Surface, Vector};
 /// deformable bodies overshoots, separates, and closes again forever.
 const BETA_MEMORY: f64 = 0.5;
 
+/// Relaxation of the linearised normal traction t* of implicit coupling.
+/// With 1 the iteration can settle into a period-two cycle between two
+/// deformable bodies whose faceted curved surfaces touch in patches
+/// (concentric cylinders, 40 against 30 faces); 0.7 removes it and costs
+/// under 10 % more outer iterations on Hertz and the patch test.
+const IMPLICIT_NORMAL_RELAXATION: f64 = 0.7;
+
 /// A penalty spring between two cells of the global system (implicit
 /// coupling of two deformable bodies).
 #[derive(Debug, Clone, Copy)]
@@ -313,9 +320,13 @@ impl ContactSet {
             };
             let law = penalty_law(&params, &master.surface, &slave.surface, &materials, None)
                 .map_err(|e| src.error(&key, e.to_string()))?;
-            // implicit: the normal traction is linearised, not relaxed (§4.5);
-            // the tangential traction stays explicit and relaxed
-            let normal_relaxation = if implicit { 1.0 } else { c.relaxation_normal };
+            // implicit: the normal traction is linearised (§4.5) and only
+            // mildly relaxed; the tangential traction stays explicit and relaxed
+            let normal_relaxation = if implicit {
+                IMPLICIT_NORMAL_RELAXATION
+            } else {
+                c.relaxation_normal
+            };
             let coupling = ExplicitRelaxation::new(normal_relaxation, c.relaxation_tangential)
                 .map_err(|e| src.error(&format!("{key}.relaxation"), e.to_string()))?;
             let detector = method

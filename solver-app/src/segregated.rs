@@ -7,6 +7,10 @@ use crate::model::Body;
 use fv_discretise::{CsrMatrix, FaceSlots, LinearSolver, LinearSolverError, MomentumParams};
 use fv_mesh::Vector;
 
+/// Smallest reference of the relative residual, as a fraction of the total
+/// displacement norm (see [`SegregatedSolver::outer_iteration`]).
+const RESIDUAL_TOTAL_FRACTION: f64 = 1e-3;
+
 /// Outcome of one load increment.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct IncrementInfo {
@@ -388,7 +392,7 @@ impl SegregatedSolver {
     /// One outer iteration (thesis §3.3 i–iv): boundary values, gradient,
     /// stress and force residual of every body, one linear solve per
     /// component, under-relaxed update. Returns the relative residual
-    /// ‖δ‖/‖u − u_start‖ and the linear iterations used. Allocates nothing.
+    /// ‖δ‖/max(‖u − u_start‖, 10⁻³‖u‖) and the linear iterations used.
     pub fn outer_iteration(
         &mut self,
         bodies: &mut [Body],
@@ -428,6 +432,7 @@ impl SegregatedSolver {
         }
         let mut norm_delta = 0.0;
         let mut norm_incr = 0.0;
+        let mut norm_total = 0.0;
         for b in bodies.iter_mut().filter(|b| !b.rigid) {
             let off = b.offset;
             for (i, u) in b.momentum.u.iter_mut().enumerate() {
@@ -435,17 +440,22 @@ impl SegregatedSolver {
                 *u += d;
                 norm_delta += d.norm_squared();
                 norm_incr += (*u - self.u_start[off + i]).norm_squared();
+                norm_total += u.norm_squared();
             }
         }
         if !norm_delta.is_finite() {
             return Err(SolveError::Diverged(0));
         }
-        // floor: nothing moves (an unloaded increment) counts as converged
+        // reference: the increment's displacement, but not less than
+        // RESIDUAL_TOTAL_FRACTION of the total (an increment in which little
+        // changes, e.g. a load held constant, must not be judged on round-off)
+        // nor than a length-scale floor (nothing moves at all)
         let floor = 1e-14 * self.length_scale * (self.n as f64).sqrt();
-        Ok((
-            norm_delta.sqrt() / norm_incr.sqrt().max(floor),
-            linear_iterations,
-        ))
+        let reference = norm_incr
+            .sqrt()
+            .max(RESIDUAL_TOTAL_FRACTION * norm_total.sqrt())
+            .max(floor);
+        Ok((norm_delta.sqrt() / reference, linear_iterations))
     }
 
     /// Refreshes boundary values, gradient, stress, residual and boundary

@@ -2,6 +2,7 @@
 //! a case and return what it measured; the tests assert on these figures
 //! and the validation report plots them.
 pub mod concentric_cylinders;
+pub mod flat_punch;
 pub mod hertz_cylinder;
 
 use std::path::{Path, PathBuf};

@@ -4,6 +4,7 @@
 
 pub mod analytical;
 pub mod benchmarks;
+pub mod report;
 
 use std::path::Path;
 

@@ -6,6 +6,8 @@
 //! Each benchmark is a [`Section`] in its own file; [`sections`] lists them.
 //! A new benchmark is one file implementing [`Section`] and one line in
 //! [`sections`].
+pub mod concentric_cylinders;
+pub mod flat_punch;
 pub mod hertz_cylinder;
 pub mod plot;
 
@@ -18,7 +20,9 @@ use std::time::Instant;
 pub fn sections() -> Vec<Box<dyn Section>> {
     vec![
         Box::new(hertz_cylinder::HertzCylinderSection),
-        // one line per benchmark, e.g. Box::new(flat_punch::FlatPunchSection),
+        Box::new(flat_punch::FlatPunchSection),
+        Box::new(concentric_cylinders::ConcentricCylindersSection),
+        // one line per benchmark section
     ]
 }
 

@@ -42,6 +42,10 @@ pub struct LinearisedContact {
     pub traction: Vec<Vector>,
     /// ε_n β: penalty stiffness per unit area (Pa/m), 0 where not in contact.
     pub stiffness: Vec<f64>,
+    /// ε_t β: tangential (stick) penalty stiffness per unit area, 0 without
+    /// friction — the frictional traction linearised as sticking (beyond
+    /// the thesis, which keeps friction explicit).
+    pub tangential_stiffness: Vec<f64>,
     /// n*: the contact normal of the last evaluation.
     pub normal: Vec<Vector>,
     /// u_b*: the boundary displacement at the last evaluation.
@@ -62,6 +66,7 @@ impl LinearisedContact {
         LinearisedContact {
             traction: vec![Vector::zeros(); n],
             stiffness: vec![0.0; n],
+            tangential_stiffness: vec![0.0; n],
             normal: vec![Vector::zeros(); n],
             reference: vec![Vector::zeros(); n],
             opposite_shift: vec![Vector::zeros(); n],
@@ -74,7 +79,32 @@ impl LinearisedContact {
     pub fn traction_at(&self, i: usize, u_b: &Vector) -> Vector {
         let n = self.normal[i];
         let approach = u_b - self.reference[i] - self.opposite_shift[i];
-        self.traction[i] - n * (self.stiffness[i] * n.dot(&approach))
+        let normal = n * n.dot(&approach);
+        self.traction[i]
+            - normal * self.stiffness[i]
+            - (approach - normal) * self.tangential_stiffness[i]
+    }
+
+    /// Matrix coefficient of component `c` of face `i` relative to the
+    /// half-cell coefficient `a` = K|Γ|/δ_n: the springs in series with the
+    /// half cell, normal and tangential parts weighted by n_c² and 1 − n_c².
+    #[inline]
+    pub fn diagonal_factor(&self, i: usize, c: usize, dn_over_k: f64) -> f64 {
+        let nc2 = self.normal[i][c] * self.normal[i][c];
+        let s = self.stiffness[i] * dn_over_k;
+        let st = self.tangential_stiffness[i] * dn_over_k;
+        s / (1.0 + s) * nc2 + st / (1.0 + st) * (1.0 - nc2)
+    }
+
+    /// Solves (I + s N + s_t (I − N)) g = r for g (eq. 4.53 with the
+    /// tangential spring), s = ε_n β δ_n/K, s_t = ε_t β δ_n/K.
+    #[inline]
+    pub fn solve_normal_derivative(&self, i: usize, dn_over_k: f64, r: &Vector) -> Vector {
+        let n = self.normal[i];
+        let s = self.stiffness[i] * dn_over_k;
+        let st = self.tangential_stiffness[i] * dn_over_k;
+        let rn = n * n.dot(r);
+        rn / (1.0 + s) + (r - rn) / (1.0 + st)
     }
 }
 

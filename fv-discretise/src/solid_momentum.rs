@@ -154,11 +154,8 @@ impl SolidMomentum {
                     PatchCondition::Traction(_) | PatchCondition::Empty => 0.0,
                     PatchCondition::LinearisedContact(lc) if !lc.grounded => 0.0,
                     PatchCondition::LinearisedContact(lc) => {
-                        // penalty spring in series with the half cell (eq. 4.54 i)
-                        let i = f - p.start;
-                        let nc = lc.normal[i][c];
-                        let s = lc.stiffness[i] * self.dn[f] / self.k;
-                        a * s / (1.0 + s) * nc * nc
+                        // penalty springs in series with the half cell (eq. 4.54 i)
+                        a * lc.diagonal_factor(f - p.start, c, self.dn[f] / self.k)
                     }
                 };
             }
@@ -209,9 +206,7 @@ impl SolidMomentum {
                         let sig_b = material.stress(&grad_b);
                         let t_extr = lc.traction_at(i, &extrapolated);
                         let r = g + (t_extr - sig_b * n) / self.k;
-                        let nc = lc.normal[i];
-                        let s = lc.stiffness[i] * self.dn[f] / self.k;
-                        let g_new = r - nc * (s / (1.0 + s) * nc.dot(&r));
+                        let g_new = lc.solve_normal_derivative(i, self.dn[f] / self.k, &r);
                         self.snd_b[b] = g_new;
                         extrapolated + g_new * self.dn[f]
                     }

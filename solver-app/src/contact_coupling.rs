@@ -35,10 +35,22 @@ const IMPLICIT_NORMAL_RELAXATION: f64 = 0.7;
 pub struct CellSpring {
     /// Global cell numbers (master side, slave side).
     pub cells: (u32, u32),
-    /// Spring stiffness, N/m.
+    /// Spring stiffness along the normal, N/m.
     pub stiffness: f64,
-    /// Direction of the spring (the master normal): component c carries stiffness·n_c².
+    /// Spring stiffness across the normal (friction linearised as sticking), N/m.
+    pub tangential: f64,
+    /// Direction of the spring (the master normal): component c carries
+    /// stiffness·n_c² + tangential·(1 − n_c²).
     pub normal: Vector,
+}
+
+impl CellSpring {
+    /// Stiffness in the equation of displacement component `c`.
+    #[inline]
+    pub fn component(&self, c: usize) -> f64 {
+        let nc2 = self.normal[c] * self.normal[c];
+        self.stiffness * nc2 + self.tangential * (1.0 - nc2)
+    }
 }
 
 /// A contact surface: one patch of one body.
@@ -320,14 +332,14 @@ impl ContactSet {
             };
             let law = penalty_law(&params, &master.surface, &slave.surface, &materials, None)
                 .map_err(|e| src.error(&key, e.to_string()))?;
-            // implicit: the normal traction is linearised (§4.5) and only
-            // mildly relaxed; the tangential traction stays explicit and relaxed
-            let normal_relaxation = if implicit {
-                IMPLICIT_NORMAL_RELAXATION
+            // implicit: the normal (§4.5) and the frictional traction are
+            // linearised and only mildly relaxed
+            let (normal_relaxation, tangential_relaxation) = if implicit {
+                (IMPLICIT_NORMAL_RELAXATION, IMPLICIT_NORMAL_RELAXATION)
             } else {
-                c.relaxation_normal
+                (c.relaxation_normal, c.relaxation_tangential)
             };
-            let coupling = ExplicitRelaxation::new(normal_relaxation, c.relaxation_tangential)
+            let coupling = ExplicitRelaxation::new(normal_relaxation, tangential_relaxation)
                 .map_err(|e| src.error(&format!("{key}.relaxation"), e.to_string()))?;
             let detector = method
                 .detector(DetectParams::default())
@@ -437,6 +449,11 @@ impl ContactSet {
                 continue;
             }
             let inv_eps = 1.0 / ci.law.normal_penalty;
+            let inv_eps_t = if ci.law.friction > 0.0 && ci.law.tangential_penalty > 0.0 {
+                1.0 / ci.law.tangential_penalty
+            } else {
+                f64::INFINITY
+            };
             let face = |b: &Body, side: &ContactSide, i: usize| {
                 let f = b.mesh.patches[side.patch].start + i;
                 let cell = b.offset + b.mesh.owner[f] as usize;
@@ -455,6 +472,7 @@ impl ContactSet {
                     out.push(CellSpring {
                         cells: (cm, cs),
                         stiffness: w * beta / (compliance_m + inv_eps + compliance_s),
+                        tangential: w * beta / (compliance_m + inv_eps_t + compliance_s),
                         normal,
                     });
                 }
@@ -529,15 +547,20 @@ impl ContactSet {
             max_change = max_change.max(info.relative_change());
             if std::env::var_os("FVC_TRACE").is_some_and(|v| v == "2") {
                 eprintln!(
-                    "    contact {}: force {:.6e} max pen {:.4e} area {:.4e} eps {:.3e}",
+                    "    contact {}: force {:.6e} slave force {:.4e} {:.4e} stick {} slip {} max pen {:.4e} area {:.4e} eps {:.3e}",
                     ci.slave_name,
                     ci.stats.normal_force,
+                    ci.stats.slave_force.x,
+                    ci.stats.slave_force.y,
+                    ci.stats.n_stick,
+                    ci.stats.n_slip,
                     ci.stats.max_penetration,
                     ci.stats.contact_area,
                     ci.law.normal_penalty
                 );
             }
             let eps = ci.law.normal_penalty;
+            let (eps_t, friction) = (ci.law.tangential_penalty, ci.law.friction);
             let deformable_pair = !bodies[ci.master.body].rigid && !bodies[ci.slave.body].rigid;
             if ci.implicit {
                 for (side, fraction) in [
@@ -573,14 +596,13 @@ impl ContactSet {
                         // the penalty in series with the opposite half cell
                         // (c_h of eqs. 4.64, 4.67): the opposite cell, not its
                         // face, is what stays put while this face is solved
-                        for ((k, beta), ch) in lc
-                            .stiffness
-                            .iter_mut()
-                            .zip(&side.beta)
-                            .zip(&side.opposite_compliance)
+                        let eps_t = if friction > 0.0 { eps_t } else { 0.0 };
+                        for (i, (&beta, &ch)) in
+                            side.beta.iter().zip(&side.opposite_compliance).enumerate()
                         {
-                            let c = eps * beta;
-                            *k = if c > 0.0 { c / (1.0 + c * ch) } else { 0.0 };
+                            let series = |c: f64| if c > 0.0 { c / (1.0 + c * ch) } else { 0.0 };
+                            lc.stiffness[i] = series(eps * beta);
+                            lc.tangential_stiffness[i] = series(eps_t * beta);
                         }
                         let n = lc.reference.len();
                         lc.reference
@@ -601,9 +623,10 @@ impl ContactSet {
         for ci in &mut self.interfaces {
             ci.algorithm
                 .commit_increment(&ci.master.surface, &ci.slave.surface);
+            // β carries over: the next increment starts with the springs of
+            // the converged contact (a body held only by contact would
+            // otherwise be free in its first outer iteration)
             ci.penalty_localised = false;
-            ci.master.beta.iter_mut().for_each(|b| *b = 0.0);
-            ci.slave.beta.iter_mut().for_each(|b| *b = 0.0);
         }
     }
 }

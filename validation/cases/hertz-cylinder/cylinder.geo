@@ -21,40 +21,42 @@
 //
 // Patches: "top" (y = 0), "curved" (the arc, contact), "frontAndBack"
 // (the two z faces: "empty"). Volume: "cylinder".
-DefineConstant[ refinement = 1 ];
+DefineConstant[ refinement = 1, mirror = 1, tc = 0.055, nc1 = 13, rt1 = 1.284, q1 = 0.8826 ];
+// mirror = -1 reflects the half-cylinder about y = 0 (flat side at y = 0,
+// arc above it); tc, nc1, rt1, q1: contact-zone half-angle, faces on it, and
+// the coarse gradings (defaults: the hertz-cylinder meshes).
 R = 8.0;        // radius
 a = 3.5;        // inner rectangle: half-width
 c = 3.5;        //                  depth
 t = 1.0;        // thickness (z)
-tc = 0.055;     // contact-zone half-angle, rad (arc ±0.44 m)
 xt = 1.0;       // half-width of the central column at y = 0
 
-nc = 13 * refinement;   // faces on the contact-zone arc (coarse 0.068 m)
+nc = nc1 * refinement;  // faces on the contact-zone arc
 ns = 12 * refinement;   // faces on each side of it, along the bottom arc
 ny = 13 * refinement;   // along the side arcs and the rectangle height
 nr = 18 * refinement;   // radial, rectangle to arc
 // geometric ratios (coarse values; the fine mesh takes their square roots):
-rt = 1.284 ^ (1 / refinement);     // side arcs: geometric growth per face away from the contact zone
-q = 0.8826 ^ (1 / refinement);      // contact-zone radial lines: about 0.55 m at the rectangle → 0.07 m at the arc
+rt = rt1 ^ (1 / refinement);       // side arcs: geometric growth per face away from the contact zone
+q = q1 ^ (1 / refinement);         // contact-zone radial lines, finer toward the arc
 pv = 0.92 ^ (1 / refinement);       // rectangle height, finer toward its bottom
 
 s = Sqrt(0.5);
 xc = 0.5;       // central column half-width at the rectangle bottom
-Point(1) = {0, 0, 0};
-Point(2) = {-a, 0, 0};                      // A  top-left of the rectangle
-Point(3) = { a, 0, 0};                      // B
-Point(4) = { a, -c, 0};                     // C
-Point(5) = {-a, -c, 0};                     // D
-Point(6) = { R, 0, 0};                      // E
-Point(7) = { R * s, -R * s, 0};             // F
-Point(8) = {-R * s, -R * s, 0};             // G
-Point(9) = {-R, 0, 0};                      // H
-Point(10) = {-xt, 0, 0};                    // central column, top
-Point(11) = { xt, 0, 0};
-Point(12) = {-xc, -c, 0};                   // central column, bottom
-Point(13) = { xc, -c, 0};
-Point(14) = {-R * Sin(tc), -R * Cos(tc), 0}; // contact zone on the arc
-Point(15) = { R * Sin(tc), -R * Cos(tc), 0};
+Point(1) = {0, mirror * (0), 0};
+Point(2) = {-a, mirror * (0), 0};                      // A  top-left of the rectangle
+Point(3) = {a, mirror * (0), 0};                      // B
+Point(4) = {a, mirror * (-c), 0};                     // C
+Point(5) = {-a, mirror * (-c), 0};                     // D
+Point(6) = {R, mirror * (0), 0};                      // E
+Point(7) = {R * s, mirror * (-R * s), 0};             // F
+Point(8) = {-R * s, mirror * (-R * s), 0};             // G
+Point(9) = {-R, mirror * (0), 0};                      // H
+Point(10) = {-xt, mirror * (0), 0};                    // central column, top
+Point(11) = {xt, mirror * (0), 0};
+Point(12) = {-xc, mirror * (-c), 0};                   // central column, bottom
+Point(13) = {xc, mirror * (-c), 0};
+Point(14) = {-R * Sin(tc), mirror * (-R * Cos(tc)), 0}; // contact zone on the arc
+Point(15) = {R * Sin(tc), mirror * (-R * Cos(tc)), 0};
 
 // rectangle: top, bottom (each left, centre, right), verticals
 Line(1) = {2, 10};   Line(2) = {10, 11};   Line(3) = {3, 11};

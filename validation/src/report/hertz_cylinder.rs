@@ -31,7 +31,9 @@ const MESHES: [(&str, &str, Limits); 2] = [
         Limits {
             peak: 0.05,
             rms: 0.05,
-            axis: 0.05,
+            // as validation/tests/hertz_cylinder.rs: 5.0 % at the shallowest
+            // coarse cell (finite-body offset plus the coarse gradient)
+            axis: 0.06,
             swap: 0.01,
         },
     ),

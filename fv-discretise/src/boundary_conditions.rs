@@ -174,3 +174,60 @@ pub fn wedge_rotations(
     }
     Ok(out)
 }
+
+#[cfg(test)]
+mod linearised_contact_tests {
+    use super::*;
+
+    fn one_face(normal: Vector, stiffness: f64, tangential: f64) -> LinearisedContact {
+        let mut lc = LinearisedContact::new(1);
+        lc.normal[0] = normal;
+        lc.stiffness[0] = stiffness;
+        lc.tangential_stiffness[0] = tangential;
+        lc.traction[0] = Vector::new(0.5, -3.0, 0.0);
+        lc.reference[0] = Vector::new(0.0, 0.01, 0.0);
+        lc
+    }
+
+    #[test]
+    fn traction_follows_eq_4_52_with_the_tangential_spring() {
+        let n = Vector::new(0.0, 1.0, 0.0);
+        let mut lc = one_face(n, 100.0, 20.0);
+        // at the reference the traction is t*
+        assert_eq!(
+            lc.traction_at(0, &Vector::new(0.0, 0.01, 0.0)),
+            lc.traction[0]
+        );
+        // moving 1e-3 along n (into the opposite body) adds −ε_n·1e-3 along n;
+        // 2e-3 across n adds −ε_t·2e-3 across it
+        let t = lc.traction_at(0, &Vector::new(2e-3, 0.011, 0.0));
+        assert!(
+            (t - Vector::new(0.5 - 0.04, -3.0 - 0.1, 0.0)).norm() < 1e-12,
+            "{t}"
+        );
+        // the opposite body following the same motion cancels it
+        lc.opposite_shift[0] = Vector::new(2e-3, 1e-3, 0.0);
+        let t = lc.traction_at(0, &Vector::new(2e-3, 0.011, 0.0));
+        assert!((t - lc.traction[0]).norm() < 1e-12);
+    }
+
+    #[test]
+    fn diagonal_and_local_solve_are_the_series_springs() {
+        // inclined normal: component weights n_c² and 1 − n_c²
+        let n = Vector::new(0.6, 0.8, 0.0);
+        let lc = one_face(n, 300.0, 50.0);
+        let dn_over_k = 0.01;
+        let (s, st) = (3.0, 0.5);
+        for c in 0..3 {
+            let nc2 = n[c] * n[c];
+            let expect = s / (1.0 + s) * nc2 + st / (1.0 + st) * (1.0 - nc2);
+            assert!((lc.diagonal_factor(0, c, dn_over_k) - expect).abs() < 1e-14);
+        }
+        // (I + s N + s_t (I − N)) g = r, checked by multiplying back
+        let r = Vector::new(1.0, -2.0, 0.5);
+        let g = lc.solve_normal_derivative(0, dn_over_k, &r);
+        let gn = n * n.dot(&g);
+        let back = g + gn * s + (g - gn) * st;
+        assert!((back - r).norm() < 1e-12, "{back} vs {r}");
+    }
+}

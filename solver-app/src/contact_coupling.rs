@@ -12,7 +12,7 @@ use crate::model::Body;
 use contact_detect::{CandidatePairs, DetectParams, DetectionMethod, Detector};
 use contact_force::{
     ContactAlgorithm, ContactAlgorithmKind, ContactLaw, ContactStats, ContactTractions, Coupling,
-    ExplicitRelaxation, PenaltyParams, SurfaceMaterial,
+    ExplicitRelaxation, GgiWeights, PenaltyParams, SurfaceMaterial,
 };
 use fv_discretise::{LinearisedContact, PatchCondition};
 use fv_mesh::{CellToPoint, Surface, Vector};
@@ -75,8 +75,8 @@ pub struct ContactSide {
     /// δ/K of the opposite surface seen by each face (GGI-weighted; 0 when
     /// the opposite body is rigid), eq. 4.64.
     opposite_compliance: Vec<f64>,
-    /// Workspace.
-    current_work: Vec<Vector>,
+    /// The same, now (workspace of [`ContactSet::track_opposite_cells`]).
+    opposite_now: Vec<Vector>,
     /// Contact fraction β of the linearisation: the current one or, if
     /// larger, the previous one times [`BETA_MEMORY`], so a face that opened
     /// in one iteration keeps a fading penalty spring in the matrix for a
@@ -85,63 +85,76 @@ pub struct ContactSide {
     beta: Vec<f64>,
 }
 
-/// GGI-weighted displacement of the opposite owner cells, per face of the
-/// master (`master_side`) or the slave, into `out`.
-fn opposite_cells_u(ci: &ContactInterface, bodies: &[Body], master_side: bool, out: &mut [Vector]) {
-    let (this, other) = if master_side {
-        (&ci.master, &ci.slave)
-    } else {
-        (&ci.slave, &ci.master)
-    };
-    let b = &bodies[other.body];
-    let start = b.mesh.patches[other.patch].start;
-    let ggi = &ci.tractions.ggi;
-    for (i, o) in out.iter_mut().enumerate().take(this.surface.n_faces()) {
+/// GGI-weighted average over the opposite faces of `value(opposite face)`
+/// for every face of the master (`master_side`) or the slave surface, into
+/// `out` (zero where a face overlaps nothing).
+fn ggi_average<T>(ggi: &GgiWeights, master_side: bool, value: impl Fn(usize) -> T, out: &mut [T])
+where
+    T: Copy + std::ops::Mul<f64, Output = T> + std::ops::Add<Output = T> + Default,
+{
+    for (i, o) in out.iter_mut().enumerate() {
         let (faces, w) = if master_side {
             ggi.master_row(i)
         } else {
             ggi.slave_row(i)
         };
-        let (mut sum, mut den) = (Vector::zeros(), 0.0);
-        for (&j, &w) in faces.iter().zip(w) {
-            let cell = b.mesh.owner[start + j as usize] as usize;
-            sum += b.momentum.u[cell] * w;
-            den += w;
-        }
+        let (sum, den) = faces
+            .iter()
+            .zip(w)
+            .fold((T::default(), 0.0), |(s, d), (&j, &w)| {
+                (s + value(j as usize) * w, d + w)
+            });
         *o = if den > 0.0 {
-            sum / den
+            sum * (1.0 / den)
         } else {
-            Vector::zeros()
+            T::default()
         };
     }
 }
 
-/// Fills [`ContactSide::opposite_compliance`] of both sides of an interface
-/// from the GGI weights of the last contact evaluation.
-fn opposite_compliance(ci: &mut ContactInterface, bodies: &[Body]) {
-    let compliance = |b: &Body, side: &ContactSide, i: usize| {
-        if b.rigid {
-            return 0.0;
+/// Sets the opposite-cell shift (u_Ph − u_Ph*, eq. 4.69) of the linearised
+/// contact condition of side `this`.
+fn track_side(
+    ggi: &GgiWeights,
+    master_side: bool,
+    this: &mut ContactSide,
+    other: &ContactSide,
+    bodies: &mut [Body],
+) {
+    let b = &bodies[other.body];
+    ggi_average(
+        ggi,
+        master_side,
+        |j| owner_u(b, other, j),
+        &mut this.opposite_now,
+    );
+    if let PatchCondition::LinearisedContact(lc) =
+        &mut bodies[this.body].momentum.conditions[this.patch]
+    {
+        for ((s, u), r) in lc
+            .opposite_shift
+            .iter_mut()
+            .zip(&this.opposite_now)
+            .zip(&this.opposite_reference)
+        {
+            *s = u - r;
         }
-        let f = b.mesh.patches[side.patch].start + i;
-        b.momentum.normal_distance(f) / b.momentum.k
-    };
-    let (bm, bs) = (&bodies[ci.master.body], &bodies[ci.slave.body]);
-    let ggi = &ci.tractions.ggi;
-    for m in 0..ci.master.surface.n_faces() {
-        let (faces, w) = ggi.master_row(m);
-        let (num, den) = faces.iter().zip(w).fold((0.0, 0.0), |(n, d), (&s, &w)| {
-            (n + w * compliance(bs, &ci.slave, s as usize), d + w)
-        });
-        ci.master.opposite_compliance[m] = if den > 0.0 { num / den } else { 0.0 };
     }
-    for s in 0..ci.slave.surface.n_faces() {
-        let (faces, w) = ggi.slave_row(s);
-        let (num, den) = faces.iter().zip(w).fold((0.0, 0.0), |(n, d), (&m, &w)| {
-            (n + w * compliance(bm, &ci.master, m as usize), d + w)
-        });
-        ci.slave.opposite_compliance[s] = if den > 0.0 { num / den } else { 0.0 };
+}
+
+/// Displacement of the owner cell of face `i` of a contact side.
+fn owner_u(b: &Body, side: &ContactSide, i: usize) -> Vector {
+    b.momentum.u[b.mesh.owner[b.mesh.patches[side.patch].start + i] as usize]
+}
+
+/// δ_n/K of the owner cell of face `i` of a contact side (c_i of eq. 4.64);
+/// 0 for a rigid body.
+fn half_cell_compliance(b: &Body, side: &ContactSide, i: usize) -> f64 {
+    if b.rigid {
+        return 0.0;
     }
+    let f = b.mesh.patches[side.patch].start + i;
+    b.momentum.normal_distance(f) / b.momentum.k
 }
 
 /// One `[[contact]]` pair with its detector, algorithm and coupling state.
@@ -313,7 +326,7 @@ impl ContactSet {
                     applied: vec![Vector::zeros(); surface.n_faces()],
                     opposite_compliance: vec![0.0; surface.n_faces()],
                     opposite_reference: vec![Vector::zeros(); surface.n_faces()],
-                    current_work: Vec::new(),
+                    opposite_now: vec![Vector::zeros(); surface.n_faces()],
                     beta: vec![0.0; surface.n_faces()],
                     surface,
                 })
@@ -406,31 +419,9 @@ impl ContactSet {
             if bodies[ci.master.body].rigid || bodies[ci.slave.body].rigid {
                 continue;
             }
-            for master_side in [true, false] {
-                let mut now = std::mem::take(&mut ci.master.current_work);
-                let n = if master_side {
-                    ci.master.surface.n_faces()
-                } else {
-                    ci.slave.surface.n_faces()
-                };
-                now.resize(n, Vector::zeros());
-                opposite_cells_u(ci, bodies, master_side, &mut now);
-                let side = if master_side { &ci.master } else { &ci.slave };
-                let (body, patch) = (side.body, side.patch);
-                if let PatchCondition::LinearisedContact(lc) =
-                    &mut bodies[body].momentum.conditions[patch]
-                {
-                    for ((s, u), r) in lc
-                        .opposite_shift
-                        .iter_mut()
-                        .zip(&now)
-                        .zip(&side.opposite_reference)
-                    {
-                        *s = u - r;
-                    }
-                }
-                ci.master.current_work = now;
-            }
+            let ggi = &ci.tractions.ggi;
+            track_side(ggi, true, &mut ci.master, &ci.slave, bodies);
+            track_side(ggi, false, &mut ci.slave, &ci.master, bodies);
         }
     }
 
@@ -571,14 +562,33 @@ impl ContactSet {
                         *b = (*b * BETA_MEMORY).max(c);
                     }
                 }
-                opposite_compliance(ci, bodies);
+                let (bm, bs) = (&bodies[ci.master.body], &bodies[ci.slave.body]);
+                let (master, slave, ggi) = (&mut ci.master, &mut ci.slave, &ci.tractions.ggi);
+                ggi_average(
+                    ggi,
+                    true,
+                    |j| half_cell_compliance(bs, slave, j),
+                    &mut master.opposite_compliance,
+                );
+                ggi_average(
+                    ggi,
+                    false,
+                    |j| half_cell_compliance(bm, master, j),
+                    &mut slave.opposite_compliance,
+                );
                 if deformable_pair {
-                    let mut r = std::mem::take(&mut ci.master.opposite_reference);
-                    opposite_cells_u(ci, bodies, true, &mut r);
-                    ci.master.opposite_reference = r;
-                    let mut r = std::mem::take(&mut ci.slave.opposite_reference);
-                    opposite_cells_u(ci, bodies, false, &mut r);
-                    ci.slave.opposite_reference = r;
+                    ggi_average(
+                        ggi,
+                        true,
+                        |j| owner_u(bs, slave, j),
+                        &mut master.opposite_reference,
+                    );
+                    ggi_average(
+                        ggi,
+                        false,
+                        |j| owner_u(bm, master, j),
+                        &mut slave.opposite_reference,
+                    );
                 }
             }
             for side in [&ci.master, &ci.slave] {

@@ -2,7 +2,7 @@
 //! same material in contact at r = 1.4, inner pressure p; the interface
 //! pressure against Lamé for the composite tube, and the pressure
 //! oscillation of the non-conformal interface (40 against 30 faces).
-use super::{cases_dir, RunCost};
+use super::{read_case, swap_master_slave, RunCost};
 use crate::analytical::lame_cylinder_stress;
 use crate::run_toml;
 
@@ -76,18 +76,13 @@ fn side_stats(surface: &fv_mesh::Surface, p: &[f64]) -> (SidePressure, Vec<(f64,
 
 /// Runs the case with the given algorithm and choice of master.
 pub fn run(algorithm: &'static str, swapped: bool) -> ConcentricCylinders {
-    let dir = cases_dir().join("concentric-cylinders");
-    let mut text = std::fs::read_to_string(dir.join("case.toml"))
-        .unwrap_or_else(|e| panic!("concentric-cylinders/case.toml: {e}"));
+    let (dir, mut text) = read_case("concentric-cylinders", "case.toml");
     text = text.replace(
         "coupling = \"implicit\"",
         &format!("coupling = \"implicit\"\nalgorithm = \"{algorithm}\""),
     );
     if swapped {
-        text = text
-            .replace("master = \"outer/inner\"", "master = \"@\"")
-            .replace("slave = \"inner/outer\"", "slave = \"outer/inner\"")
-            .replace("master = \"@\"", "master = \"inner/outer\"");
+        text = swap_master_slave(&text, "outer/inner", "inner/outer");
     }
     let out = run_toml(&text, &dir);
     let c = &out.contacts.interfaces[0];

@@ -2,7 +2,7 @@
 //! pressed 0.0967 mm into a 2H × H block (plane stress, half model); the
 //! contact pressure against A20 with the computed force, and the surface
 //! settlement outside the punch against the shape of A22.
-use super::{cases_dir, RunCost};
+use super::{read_case, swap_master_slave, RunCost};
 use crate::run_toml;
 
 /// Punch half-width b, m.
@@ -52,14 +52,9 @@ pub struct FlatPunch {
 
 /// Runs the case, with the rigid punch as master or (`swapped`) as slave.
 pub fn run(swapped: bool) -> FlatPunch {
-    let dir = cases_dir().join("flat-punch");
-    let mut text = std::fs::read_to_string(dir.join("case.toml"))
-        .unwrap_or_else(|e| panic!("flat-punch/case.toml: {e}"));
+    let (dir, mut text) = read_case("flat-punch", "case.toml");
     if swapped {
-        text = text
-            .replace("master = \"punch/ymin\"", "master = \"@\"")
-            .replace("slave = \"block/top\"", "slave = \"punch/ymin\"")
-            .replace("master = \"@\"", "master = \"block/top\"");
+        text = swap_master_slave(&text, "punch/ymin", "block/top");
     }
     let out = run_toml(&text, &dir);
     let c = &out.contacts.interfaces[0];

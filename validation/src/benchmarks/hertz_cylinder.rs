@@ -1,7 +1,7 @@
 //! hertz-cylinder (thesis §5.2.1): a half-cylinder R = 8 m, E = 200 Pa,
 //! ν = 0.3, plane strain, pressed 0.02 m onto a rigid flat; the contact
 //! pressure against Hertz (A4–A6) with the computed normal force.
-use super::{cases_dir, RunCost};
+use super::{read_case, swap_master_slave, RunCost};
 use crate::analytical::{contact_modulus, HertzLine};
 use crate::run_toml;
 
@@ -45,14 +45,9 @@ pub struct HertzCylinder {
 
 /// Runs the coarse (1,615 cells) or fine (6,460 cells) case.
 pub fn run(mesh: &'static str, swapped: bool) -> HertzCylinder {
-    let dir = cases_dir().join("hertz-cylinder");
-    let mut text = std::fs::read_to_string(dir.join(format!("{mesh}.toml")))
-        .unwrap_or_else(|e| panic!("hertz-cylinder/{mesh}.toml: {e}"));
+    let (dir, mut text) = read_case("hertz-cylinder", &format!("{mesh}.toml"));
     if swapped {
-        text = text
-            .replace("master = \"flat/ymax\"", "master = \"@\"")
-            .replace("slave = \"cylinder/curved\"", "slave = \"flat/ymax\"")
-            .replace("master = \"@\"", "master = \"cylinder/curved\"");
+        text = swap_master_slave(&text, "flat/ymax", "cylinder/curved");
     }
     let out = run_toml(&text, &dir);
     let c = &out.contacts.interfaces[0];

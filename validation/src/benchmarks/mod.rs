@@ -12,6 +12,26 @@ pub fn cases_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("cases")
 }
 
+/// The text of case `file` in `validation/cases/<case>` and that folder
+/// (relative mesh paths resolve against it).
+pub fn read_case(case: &str, file: &str) -> (PathBuf, String) {
+    let dir = cases_dir().join(case);
+    let text =
+        std::fs::read_to_string(dir.join(file)).unwrap_or_else(|e| panic!("{case}/{file}: {e}"));
+    (dir, text)
+}
+
+/// The case text with the `[[contact]]` surfaces `master` and `slave`
+/// (`"<body>/<patch>"`) exchanged.
+pub fn swap_master_slave(text: &str, master: &str, slave: &str) -> String {
+    text.replace(&format!("master = \"{master}\""), "master = \"@\"")
+        .replace(
+            &format!("slave = \"{slave}\""),
+            &format!("slave = \"{master}\""),
+        )
+        .replace("master = \"@\"", &format!("master = \"{slave}\""))
+}
+
 /// Cost figures of one run.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct RunCost {

@@ -4,13 +4,17 @@ use fv_mesh::{MeshError, MeshGeometry, PolyMesh, Tensor, Vector};
 /// The condition on one patch, with its current per-face values.
 ///
 /// Values are refreshed by the caller at every load increment (time
-/// tables); a `pressure` load is passed as `Traction` with t = −p n.
+/// tables). Tractions and pressures act per unit area of the current
+/// configuration; a pressure follows the deformed normal.
 #[derive(Debug, Clone)]
 pub enum PatchCondition {
     /// Prescribed displacement u_b per face (eq. 3.19).
     Displacement(Vec<Vector>),
     /// Prescribed traction per face (eqs. 3.21–3.24); zero = traction-free.
     Traction(Vec<Vector>),
+    /// Prescribed pressure per face (positive presses on the face): the
+    /// traction −p n along the current (deformed) normal.
+    Pressure(Vec<f64>),
     /// Prescribed displacement along the outward normal (negative = inward)
     /// per face, zero shear traction.
     NormalDisplacement(Vec<f64>),
@@ -114,6 +118,7 @@ impl PatchCondition {
         match self {
             PatchCondition::Displacement(_) => "displacement",
             PatchCondition::Traction(_) => "traction",
+            PatchCondition::Pressure(_) => "pressure",
             PatchCondition::NormalDisplacement(_) => "normal-displacement",
             PatchCondition::Symmetry => "symmetry",
             PatchCondition::Empty => "empty",

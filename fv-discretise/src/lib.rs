@@ -8,6 +8,7 @@
 mod boundary_conditions;
 mod least_squares_gradient;
 mod solid_momentum;
+mod stress_law;
 
 pub mod bicgstab_ilu0;
 pub mod csr;
@@ -17,7 +18,8 @@ pub mod pcg_ic0;
 
 pub use boundary_conditions::{wedge_rotations, LinearisedContact, PatchCondition};
 pub use least_squares_gradient::LeastSquaresGradient;
-pub use solid_momentum::{MomentumParams, SolidMomentum};
+pub use solid_momentum::{Inertia, MomentumParams, SolidMomentum};
+pub use stress_law::{current_area_vector, StressLaw};
 
 pub use bicgstab_ilu0::{BicgstabIlu0, BicgstabParams};
 pub use csr::{CsrMatrix, FaceSlots, PatternGrowth};

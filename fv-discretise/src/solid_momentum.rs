@@ -14,8 +14,16 @@
 //! explicit diffusion terms of (3.7) are the same operator, so they cancel at
 //! convergence and the converged field satisfies F(u) = 0 exactly (the
 //! non-orthogonal correction of (3.12) cancels identically in this form).
-use crate::{LeastSquaresGradient, PatchCondition};
-use fv_materials::Material;
+//!
+//! Under the updated Lagrangian form (eq. 3.6, [`StressLaw::UpdatedLagrangian`])
+//! the same operators act on the displacement increment Δu = u − u_old on
+//! the mesh of the start of the increment, and σ is replaced by
+//! σ̂ = jσ·f⁻ᵀ (3.16); the unknown `u` stays the total displacement. With
+//! inertia (3.11) the cell balance gains −m_P ü_P (backward Euler, the mass
+//! m_P = ρ_P Ω_P conserved) and the matrix diagonal m_P/Δt².
+use crate::stress_law::current_area_vector;
+use crate::{LeastSquaresGradient, PatchCondition, StressLaw};
+use fv_materials::{updated_lagrangian_stress, MaterialError};
 use fv_mesh::{MeshGeometry, PolyMesh, Tensor, Vector};
 
 /// Knobs of the discretisation.
@@ -31,8 +39,75 @@ impl Default for MomentumParams {
     }
 }
 
-/// Discretised momentum balance and fields of one body.
+/// The temporal term of eq. (3.11): backward Euler on the cell
+/// displacement, with the cell mass ρΩ conserved through the motion.
 #[derive(Debug, Clone)]
+pub struct Inertia {
+    /// Mass m_P = ρ_P Ω_P of every cell.
+    pub mass: Vec<f64>,
+    /// Displacement at the two previous time instances (m−1, m−2).
+    u_prev: Vec<Vector>,
+    u_prev2: Vec<Vector>,
+    /// Time step of this increment and of the previous one.
+    dt: f64,
+    dt_prev: f64,
+}
+
+impl Inertia {
+    /// A body at rest with cell masses `mass`.
+    pub fn new(mass: Vec<f64>) -> Self {
+        let n = mass.len();
+        Inertia {
+            mass,
+            u_prev: vec![Vector::zeros(); n],
+            u_prev2: vec![Vector::zeros(); n],
+            dt: 0.0,
+            dt_prev: 0.0,
+        }
+    }
+
+    /// Sets the time step of the coming increment.
+    pub fn set_time_step(&mut self, dt: f64) {
+        if self.dt_prev == 0.0 {
+            self.dt_prev = dt;
+        }
+        self.dt = dt;
+    }
+
+    /// Time step of the current increment.
+    pub fn time_step(&self) -> f64 {
+        self.dt
+    }
+
+    /// Matrix diagonal m_P/Δt² of cell `i`.
+    #[inline]
+    pub fn diagonal(&self, i: usize) -> f64 {
+        self.mass[i] / (self.dt * self.dt)
+    }
+
+    /// Inertia force −m_P ü_P of cell `i` at displacement `u` (eq. 3.11).
+    #[inline]
+    fn force(&self, i: usize, u: &Vector) -> Vector {
+        let v_now = (u - self.u_prev[i]) / self.dt;
+        let v_before = (self.u_prev[i] - self.u_prev2[i]) / self.dt_prev;
+        -(v_now - v_before) * (self.mass[i] / self.dt)
+    }
+
+    /// Velocity of cell `i` at displacement `u` (backward difference).
+    pub fn velocity(&self, i: usize, u: &Vector) -> Vector {
+        (u - self.u_prev[i]) / self.dt
+    }
+
+    /// End of a converged time step: shifts the time levels.
+    pub fn advance(&mut self, u: &[Vector]) {
+        std::mem::swap(&mut self.u_prev, &mut self.u_prev2);
+        self.u_prev.copy_from_slice(u);
+        self.dt_prev = self.dt;
+    }
+}
+
+/// Discretised momentum balance and fields of one body.
+#[derive(Debug)]
 pub struct SolidMomentum {
     /// Implicit stiffness K = 2μ + λ.
     pub k: f64,
@@ -44,16 +119,33 @@ pub struct SolidMomentum {
     pub gradient: LeastSquaresGradient,
     /// Condition of every patch.
     pub conditions: Vec<PatchCondition>,
-    /// Cell-centre displacement.
+    /// Constitutive law and formulation (small strain or updated Lagrangian).
+    pub law: StressLaw,
+    /// Temporal term (dynamic analyses).
+    pub inertia: Option<Inertia>,
+    /// Cell-centre displacement (total).
     pub u: Vec<Vector>,
-    /// Boundary-face displacement (index face − n_internal_faces).
+    /// Boundary-face displacement (total; index face − n_internal_faces).
     pub u_b: Vec<Vector>,
-    /// Normal derivative n·∇u on traction faces (eq. 3.22), per boundary face.
+    /// Total displacement at the start of the increment, cells and boundary
+    /// faces (updated Lagrangian only; empty otherwise).
+    u_old: Vec<Vector>,
+    u_b_old: Vec<Vector>,
+    /// Increment Δu = u − u_old, cells and boundary faces (updated
+    /// Lagrangian only; empty otherwise).
+    du: Vec<Vector>,
+    du_b: Vec<Vector>,
+    /// Normal derivative n·∇u on traction faces (eq. 3.22), per boundary
+    /// face (of Δu under the updated Lagrangian form).
     pub snd_b: Vec<Vector>,
-    /// Cell displacement gradient.
+    /// Cell gradient of the displacement on the current mesh: of u under
+    /// small strain, of the increment Δu under the updated Lagrangian form.
     pub grad_u: Vec<Tensor>,
     /// Cell Cauchy stress.
     pub sigma: Vec<Tensor>,
+    /// Cell surface-force tensor σ̂ = jσ·f⁻ᵀ (eq. 3.16; updated Lagrangian
+    /// only, empty otherwise).
+    sigma_hat: Vec<Tensor>,
     /// Force exerted on the body through every boundary face.
     pub face_force: Vec<Vector>,
     /// Force residual F_P of every cell.
@@ -67,29 +159,39 @@ impl SolidMomentum {
     pub fn new(
         mesh: &PolyMesh,
         geom: &MeshGeometry,
-        material: &dyn Material,
+        law: StressLaw,
         conditions: Vec<PatchCondition>,
     ) -> Self {
         let nf = mesh.n_faces();
         let ni = mesh.n_internal_faces();
         let nb = nf - ni;
+        let nc = mesh.n_cells;
         let passive: Vec<bool> = conditions
             .iter()
             .map(|c| matches!(c, PatchCondition::Empty))
             .collect();
+        let ul = law.is_updated_lagrangian();
+        let ul_len = |n: usize| if ul { n } else { 0 };
         let mut s = SolidMomentum {
-            k: material.implicit_stiffness(),
+            k: law.implicit_stiffness(),
             dn: vec![0.0; nf],
             kb: vec![Vector::zeros(); nb],
             gradient: LeastSquaresGradient::new(mesh, geom, &passive),
             conditions,
-            u: vec![Vector::zeros(); mesh.n_cells],
+            law,
+            inertia: None,
+            u: vec![Vector::zeros(); nc],
             u_b: vec![Vector::zeros(); nb],
+            u_old: vec![Vector::zeros(); ul_len(nc)],
+            u_b_old: vec![Vector::zeros(); ul_len(nb)],
+            du: vec![Vector::zeros(); ul_len(nc)],
+            du_b: vec![Vector::zeros(); ul_len(nb)],
             snd_b: vec![Vector::zeros(); nb],
-            grad_u: vec![Tensor::zeros(); mesh.n_cells],
-            sigma: vec![Tensor::zeros(); mesh.n_cells],
+            grad_u: vec![Tensor::zeros(); nc],
+            sigma: vec![Tensor::zeros(); nc],
+            sigma_hat: vec![Tensor::zeros(); ul_len(nc)],
             face_force: vec![Vector::zeros(); nb],
-            residual: vec![Vector::zeros(); mesh.n_cells],
+            residual: vec![Vector::zeros(); nc],
             body_force: Vec::new(),
         };
         s.update_geometry(mesh, geom);
@@ -117,6 +219,44 @@ impl SolidMomentum {
         self.gradient.update(mesh, geom, &passive);
     }
 
+    /// The displacement the mesh operators act on, cells and boundary
+    /// faces: u under small strain, the increment Δu under the updated
+    /// Lagrangian form (current after [`Self::update_boundary_values`]).
+    #[inline]
+    pub fn increment(&self) -> (&[Vector], &[Vector]) {
+        if self.law.is_updated_lagrangian() {
+            (&self.du, &self.du_b)
+        } else {
+            (&self.u, &self.u_b)
+        }
+    }
+
+    /// Displacement of cell `i` at the start of the increment (zero under
+    /// small strain: the mesh operators act on the total displacement).
+    #[inline]
+    fn old(&self, i: usize) -> Vector {
+        self.u_old.get(i).copied().unwrap_or_else(Vector::zeros)
+    }
+
+    /// End of a converged increment of the updated Lagrangian form, after
+    /// the mesh was moved by the increment and [`Self::update_geometry`]
+    /// called: the trial material state is committed and the current
+    /// displacement becomes the start of the next increment.
+    pub fn commit_increment(&mut self) {
+        if let StressLaw::UpdatedLagrangian { state, .. } = &mut self.law {
+            state.commit();
+            self.u_old.copy_from_slice(&self.u);
+            self.u_b_old.copy_from_slice(&self.u_b);
+            self.du.iter_mut().for_each(|d| *d = Vector::zeros());
+            self.du_b.iter_mut().for_each(|d| *d = Vector::zeros());
+            self.grad_u.iter_mut().for_each(|g| *g = Tensor::zeros());
+            self.snd_b.iter_mut().for_each(|g| *g = Vector::zeros());
+        }
+        if let Some(inertia) = &mut self.inertia {
+            inertia.advance(&self.u);
+        }
+    }
+
     /// d_f·n_f of face f (boundary faces: the normal distance |d_n| of the
     /// owner centre), clipped as in the matrix coefficients.
     #[inline]
@@ -132,7 +272,8 @@ impl SolidMomentum {
 
     /// Adds the boundary contributions to the matrix diagonal of component
     /// `c` (0, 1, 2): eq. (3.19) for displacement faces, the normal part for
-    /// symmetry and normal-displacement faces, nothing for traction faces.
+    /// symmetry and normal-displacement faces, nothing for traction faces;
+    /// plus m_P/Δt² of the temporal term (3.11).
     pub fn add_boundary_diagonal(
         &self,
         mesh: &PolyMesh,
@@ -151,7 +292,9 @@ impl SolidMomentum {
                         a * n[c] * n[c]
                     }
                     PatchCondition::Wedge(r) => 0.5 * a * (1.0 - r[f - p.start][(c, c)]).abs(),
-                    PatchCondition::Traction(_) | PatchCondition::Empty => 0.0,
+                    PatchCondition::Traction(_)
+                    | PatchCondition::Pressure(_)
+                    | PatchCondition::Empty => 0.0,
                     PatchCondition::LinearisedContact(lc) if !lc.grounded => 0.0,
                     PatchCondition::LinearisedContact(lc) => {
                         // penalty springs in series with the half cell (eq. 4.54 i)
@@ -162,15 +305,42 @@ impl SolidMomentum {
         }
     }
 
+    /// Adds the temporal diagonal m_P/Δt² (eq. 3.11) to `diag` (no-op for
+    /// static bodies).
+    pub fn add_inertia_diagonal(&self, diag: &mut [f64]) {
+        if let Some(inertia) = &self.inertia {
+            for (i, d) in diag.iter_mut().enumerate() {
+                *d += inertia.diagonal(i);
+            }
+        }
+    }
+
+    /// n·σ̂ at a boundary face (force per unit mesh area) and the ratio of
+    /// the current to the mesh area, from the face gradient `grad_b`;
+    /// falls back to the owner cell's stress when the face gradient inverts
+    /// the point.
+    #[inline]
+    fn face_traction(&self, o: usize, grad_b: &Tensor, n: &Vector) -> (Vector, f64) {
+        let ul = self.law.is_updated_lagrangian();
+        let sig_hat = match self.law.point_stress(o, grad_b) {
+            Some((_, h)) => h,
+            None if ul => self.sigma_hat[o],
+            None => self.sigma[o],
+        };
+        let ratio = if ul {
+            current_area_vector(true, grad_b, n).norm()
+        } else {
+            1.0
+        };
+        (sig_hat * n, ratio)
+    }
+
     /// Updates the boundary-face displacement from the cell values and the
-    /// current gradient: prescribed (3.19), traction (3.22–3.24, with the
-    /// normal-gradient correction 3.23), symmetry (3.26), wedge (rotation).
-    pub fn update_boundary_values(
-        &mut self,
-        mesh: &PolyMesh,
-        geom: &MeshGeometry,
-        material: &dyn Material,
-    ) {
+    /// current gradient: prescribed (3.19), traction and pressure (3.22–3.24,
+    /// with the normal-gradient correction 3.23), symmetry (3.26), wedge
+    /// (rotation), linearised contact (4.53). Under the updated Lagrangian
+    /// form the extrapolation acts on the increment; then Δu is refreshed.
+    pub fn update_boundary_values(&mut self, mesh: &PolyMesh, geom: &MeshGeometry) {
         let ni = mesh.n_internal_faces();
         for (p, cond) in mesh.patches.iter().zip(&self.conditions) {
             for f in p.faces() {
@@ -178,15 +348,27 @@ impl SolidMomentum {
                 let o = mesh.owner[f] as usize;
                 let n = geom.face_normals[f];
                 let gp = self.grad_u[o];
-                let extrapolated = self.u[o] + gp.transpose() * self.kb[b];
-                self.u_b[b] = match cond {
+                let base = self.u_b_old.get(b).copied().unwrap_or_else(Vector::zeros);
+                // total displacement extrapolated from the owner along k_b
+                let extrapolated = base + (self.u[o] - self.old(o)) + gp.transpose() * self.kb[b];
+                let grad_at = |g: &Vector| gp + n * (g - gp.transpose() * n).transpose();
+                let u_b = match cond {
                     PatchCondition::Displacement(v) => v[f - p.start],
                     PatchCondition::Traction(t) => {
-                        // g_b ← g_b + (t − n·σ_b)/K   (3.22–3.23)
+                        // g_b ← g_b + (t − n·σ̂_b)/K   (3.22–3.23)
                         let g = self.snd_b[b];
-                        let grad_b = gp + n * (g - gp.transpose() * n).transpose();
-                        let sig_b = material.stress(&grad_b);
-                        let g_new = g + (t[f - p.start] - sig_b * n) / self.k;
+                        let (t_b, ratio) = self.face_traction(o, &grad_at(&g), &n);
+                        let g_new = g + (t[f - p.start] * ratio - t_b) / self.k;
+                        self.snd_b[b] = g_new;
+                        extrapolated + g_new * self.dn[f]
+                    }
+                    PatchCondition::Pressure(pr) => {
+                        let g = self.snd_b[b];
+                        let grad_b = grad_at(&g);
+                        let (t_b, _) = self.face_traction(o, &grad_b, &n);
+                        let ul = self.law.is_updated_lagrangian();
+                        let target = -current_area_vector(ul, &grad_b, &n) * pr[f - p.start];
+                        let g_new = g + (target - t_b) / self.k;
                         self.snd_b[b] = g_new;
                         extrapolated + g_new * self.dn[f]
                     }
@@ -202,35 +384,72 @@ impl SolidMomentum {
                         // (I + s N) g = g + (t* − ε β N (u_extr − u_b*) − n·σ_b)/K
                         let i = f - p.start;
                         let g = self.snd_b[b];
-                        let grad_b = gp + n * (g - gp.transpose() * n).transpose();
-                        let sig_b = material.stress(&grad_b);
-                        let t_extr = lc.traction_at(i, &extrapolated);
-                        let r = g + (t_extr - sig_b * n) / self.k;
+                        let (t_b, ratio) = self.face_traction(o, &grad_at(&g), &n);
+                        let t_extr = lc.traction_at(i, &extrapolated) * ratio;
+                        let r = g + (t_extr - t_b) / self.k;
                         let g_new = lc.solve_normal_derivative(i, self.dn[f] / self.k, &r);
                         self.snd_b[b] = g_new;
                         extrapolated + g_new * self.dn[f]
                     }
                 };
+                self.u_b[b] = u_b;
+            }
+        }
+        if self.law.is_updated_lagrangian() {
+            for ((d, u), o) in self.du.iter_mut().zip(&self.u).zip(&self.u_old) {
+                *d = u - o;
+            }
+            for ((d, u), o) in self.du_b.iter_mut().zip(&self.u_b).zip(&self.u_b_old) {
+                *d = u - o;
             }
         }
     }
 
-    /// Cell gradient (least squares) and stress from the current fields.
-    pub fn update_gradient_and_stress(&mut self, mesh: &PolyMesh, material: &dyn Material) {
-        self.gradient
-            .vector_gradient(mesh, &self.u, &self.u_b, &mut self.grad_u);
-        for (s, g) in self.sigma.iter_mut().zip(&self.grad_u) {
-            *s = material.stress(g);
+    /// Cell gradient (least squares) and stress from the current fields:
+    /// σ of the total gradient (small strain), or σ from the increment
+    /// gradient and the committed state, and σ̂ = jσ·f⁻ᵀ (updated Lagrangian).
+    pub fn update_gradient_and_stress(&mut self, mesh: &PolyMesh) -> Result<(), MaterialError> {
+        match &mut self.law {
+            StressLaw::Small(m) => {
+                self.gradient
+                    .vector_gradient(mesh, &self.u, &self.u_b, &mut self.grad_u);
+                for (s, g) in self.sigma.iter_mut().zip(&self.grad_u) {
+                    *s = m.stress(g);
+                }
+            }
+            StressLaw::UpdatedLagrangian { law, state } => {
+                self.gradient
+                    .vector_gradient(mesh, &self.du, &self.du_b, &mut self.grad_u);
+                law.update_stress(&self.grad_u, state, &mut self.sigma)?;
+                for ((h, s), g) in self.sigma_hat.iter_mut().zip(&self.sigma).zip(&self.grad_u) {
+                    let f = Tensor::identity() + g.transpose();
+                    *h = updated_lagrangian_stress(s, &f).unwrap_or(*s);
+                }
+            }
         }
+        Ok(())
     }
 
     /// Gradient at boundary face f: the cell gradient with its normal part
-    /// replaced by the compact normal derivative (u_b − u_P − k_b·∇u_P)/|d_n|.
+    /// replaced by the compact normal derivative (u_b − u_P − k_b·∇u_P)/|d_n|
+    /// (of the increment under the updated Lagrangian form).
     #[inline]
     fn boundary_gradient(&self, f: usize, b: usize, o: usize, n: &Vector) -> Tensor {
         let gp = self.grad_u[o];
-        let snd = (self.u_b[b] - self.u[o] - gp.transpose() * self.kb[b]) / self.dn[f];
+        let (u, u_b) = self.increment();
+        let snd = (u_b[b] - u[o] - gp.transpose() * self.kb[b]) / self.dn[f];
         gp + n * (snd - gp.transpose() * n).transpose()
+    }
+
+    /// Surface-force tensor σ̂ at boundary face f (σ under small strain).
+    #[inline]
+    fn boundary_sigma_hat(&self, f: usize, b: usize, o: usize, n: &Vector) -> Tensor {
+        let g = self.boundary_gradient(f, b, o, n);
+        match self.law.point_stress(o, &g) {
+            Some((_, h)) => h,
+            None if self.law.is_updated_lagrangian() => self.sigma_hat[o],
+            None => self.sigma[o],
+        }
     }
 
     /// Computes the force residual F_P of every cell and the force through
@@ -239,10 +458,10 @@ impl SolidMomentum {
         &mut self,
         mesh: &PolyMesh,
         geom: &MeshGeometry,
-        material: &dyn Material,
         params: &MomentumParams,
     ) {
         let ni = mesh.n_internal_faces();
+        let ul = self.law.is_updated_lagrangian();
         if self.body_force.len() == self.residual.len() {
             for ((r, b), v) in self
                 .residual
@@ -255,21 +474,31 @@ impl SolidMomentum {
         } else {
             self.residual.iter_mut().for_each(|r| *r = Vector::zeros());
         }
+        if let Some(inertia) = &self.inertia {
+            for (i, (r, u)) in self.residual.iter_mut().zip(&self.u).enumerate() {
+                *r += inertia.force(i, u);
+            }
+        }
+        // moved out while the fields are read (no allocation: the buffers return)
+        let mut residual = std::mem::take(&mut self.residual);
+        let mut face_force = std::mem::take(&mut self.face_force);
         let alpha = params.rhie_chow;
+        let sig_cells: &[Tensor] = if ul { &self.sigma_hat } else { &self.sigma };
+        let (u_inc, _) = self.increment();
         for f in 0..ni {
             let o = mesh.owner[f] as usize;
             let nb = mesh.neighbour[f] as usize;
             let w = geom.weight[f];
-            let sig_f = self.sigma[o] * w + self.sigma[nb] * (1.0 - w);
+            let sig_f = sig_cells[o] * w + sig_cells[nb] * (1.0 - w);
             let mut force = sig_f * geom.face_areas[f];
             if alpha != 0.0 {
                 let grad_f = self.grad_u[o] * w + self.grad_u[nb] * (1.0 - w);
                 let d = geom.delta[f];
-                let jump = self.u[nb] - self.u[o] - grad_f.transpose() * d;
+                let jump = u_inc[nb] - u_inc[o] - grad_f.transpose() * d;
                 force += jump * (alpha * self.k * geom.face_mag[f] / self.dn[f]);
             }
-            self.residual[o] += force;
-            self.residual[nb] -= force;
+            residual[o] += force;
+            residual[nb] -= force;
         }
         for (p, cond) in mesh.patches.iter().zip(&self.conditions) {
             for f in p.faces() {
@@ -277,45 +506,54 @@ impl SolidMomentum {
                 let o = mesh.owner[f] as usize;
                 let n = geom.face_normals[f];
                 let area = geom.face_areas[f];
-                let force = match cond {
-                    PatchCondition::Displacement(_) => {
-                        material.stress(&self.boundary_gradient(f, b, o, &n)) * area
+                let current_mag = || {
+                    if ul {
+                        let g = self.boundary_gradient(f, b, o, &n);
+                        current_area_vector(true, &g, &area).norm()
+                    } else {
+                        geom.face_mag[f]
                     }
-                    PatchCondition::Traction(t) => t[f - p.start] * geom.face_mag[f],
+                };
+                let force = match cond {
+                    PatchCondition::Displacement(_) => self.boundary_sigma_hat(f, b, o, &n) * area,
+                    PatchCondition::Traction(t) => t[f - p.start] * current_mag(),
+                    PatchCondition::Pressure(pr) => {
+                        let g = self.boundary_gradient(f, b, o, &n);
+                        -current_area_vector(ul, &g, &area) * pr[f - p.start]
+                    }
                     PatchCondition::LinearisedContact(lc) => {
-                        lc.traction_at(f - p.start, &self.u_b[b]) * geom.face_mag[f]
+                        lc.traction_at(f - p.start, &self.u_b[b]) * current_mag()
                     }
                     PatchCondition::Symmetry | PatchCondition::NormalDisplacement(_) => {
-                        let s = material.stress(&self.boundary_gradient(f, b, o, &n));
-                        area * n.dot(&(s * n))
+                        let s = self.boundary_sigma_hat(f, b, o, &n);
+                        n * n.dot(&(s * area))
                     }
                     PatchCondition::Empty => Vector::zeros(),
                     PatchCondition::Wedge(r) => {
                         let r = r[f - p.start];
-                        (r * self.sigma[o] * r.transpose()) * area
+                        (r * sig_cells[o] * r.transpose()) * area
                     }
                 };
-                self.face_force[b] = force;
-                self.residual[o] += force;
+                face_force[b] = force;
+                residual[o] += force;
             }
         }
+        self.residual = residual;
+        self.face_force = face_force;
     }
 
-    /// Boundary stress at every face of patch `p` (for output).
-    pub fn boundary_stress(
-        &self,
-        mesh: &PolyMesh,
-        geom: &MeshGeometry,
-        material: &dyn Material,
-        p: usize,
-    ) -> Vec<Tensor> {
+    /// Boundary (Cauchy) stress at every face of patch `p` (for output).
+    pub fn boundary_stress(&self, mesh: &PolyMesh, geom: &MeshGeometry, p: usize) -> Vec<Tensor> {
         let ni = mesh.n_internal_faces();
         mesh.patches[p]
             .faces()
             .map(|f| {
                 let o = mesh.owner[f] as usize;
                 let n = geom.face_normals[f];
-                material.stress(&self.boundary_gradient(f, f - ni, o, &n))
+                let g = self.boundary_gradient(f, f - ni, o, &n);
+                self.law
+                    .point_stress(o, &g)
+                    .map_or(self.sigma[o], |(s, _)| s)
             })
             .collect()
     }

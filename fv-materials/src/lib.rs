@@ -7,7 +7,8 @@
 //!   deformation gradient f = I + (∇Δu)ᵀ of the current increment applied to
 //!   a committed per-cell [`MaterialState`]; neo-Hookean ([`NeoHookean`],
 //!   eq. 2.25) and neo-Hookean J2 plasticity ([`NeoHookeanPlastic`],
-//!   eqs. 2.28–2.31) with [`Hardening`]. [`LinearElastic`] implements both.
+//!   eqs. 2.28–2.31) with [`Hardening`]; [`StVenantKirchhoff`] is Hooke's
+//!   law for finite strain. [`LinearElastic`] implements both (additively).
 //!
 //! Tensor convention (as OpenFOAM and the thesis): the displacement gradient
 //! is `(∇u)_ij = ∂u_j/∂x_i`, so the deformation gradient is F = I + (∇u)ᵀ;
@@ -19,6 +20,7 @@ mod large_strain;
 mod linear_elastic;
 mod neo_hookean;
 mod neo_hookean_plastic;
+mod st_venant_kirchhoff;
 
 pub use hardening::Hardening;
 pub use large_strain::{
@@ -28,6 +30,7 @@ pub use large_strain::{
 pub use linear_elastic::LinearElastic;
 pub use neo_hookean::NeoHookean;
 pub use neo_hookean_plastic::NeoHookeanPlastic;
+pub use st_venant_kirchhoff::StVenantKirchhoff;
 
 /// 3×3 tensor.
 pub type Tensor = nalgebra::Matrix3<f64>;

@@ -61,7 +61,8 @@ pub struct ContactSide {
     pub patch: usize,
     /// The surface at the current positions.
     pub surface: Surface,
-    /// Initial positions of the surface points.
+    /// Positions of the surface points on the body's mesh: initial, or at
+    /// the start of the increment under the updated Lagrangian form.
     initial: Vec<Vector>,
     /// Displacement of the surface points (workspace).
     point_u: Vec<Vector>,
@@ -230,8 +231,8 @@ type FaceMaterial = (Vec<f64>, Vec<f64>, Vec<f64>);
 
 fn surface_material(body: &Body, surface: &Surface) -> FaceMaterial {
     let n = surface.n_faces();
-    let k = vec![body.material.implicit_stiffness(); n];
-    let g = vec![body.material.shear_modulus(); n];
+    let k = vec![body.momentum.law.implicit_stiffness(); n];
+    let g = vec![body.momentum.law.shear_modulus(); n];
     let len = surface
         .faces
         .iter()
@@ -471,6 +472,30 @@ impl ContactSet {
         }
     }
 
+    /// End of an increment, after the bodies' meshes moved (updated
+    /// Lagrangian): the surfaces' base positions become the moved mesh
+    /// points and the cell-to-point weights follow the new geometry.
+    pub fn end_increment(&mut self, bodies: &[Body]) {
+        for (bi, op) in self.cell_to_point.iter_mut().enumerate() {
+            if let Some(op) = op {
+                if bodies[bi].momentum.law.is_updated_lagrangian() {
+                    op.update_weights(&bodies[bi].mesh, &bodies[bi].geom);
+                }
+            }
+        }
+        for ci in &mut self.interfaces {
+            for side in [&mut ci.master, &mut ci.slave] {
+                let b = &bodies[side.body];
+                if b.rigid || !b.momentum.law.is_updated_lagrangian() {
+                    continue;
+                }
+                for (x, &p) in side.initial.iter_mut().zip(&side.surface.point_ids) {
+                    *x = b.mesh.points[p as usize];
+                }
+            }
+        }
+    }
+
     /// Moves one contact surface to the current displacement of its body.
     fn move_side(side: &mut ContactSide, bodies: &[Body], c2p: &[Option<CellToPoint>]) {
         let b = &bodies[side.body];
@@ -479,12 +504,10 @@ impl ContactSet {
                 *u = b.rigid_displacement(x0);
             }
         } else if let Some(op) = &c2p[side.body] {
-            op.interpolate_points(
-                &side.surface.point_ids,
-                &b.momentum.u,
-                &b.momentum.u_b,
-                &mut side.point_u,
-            );
+            // the increment on the mesh of the start of the increment (the
+            // total displacement under small strain)
+            let (u, u_b) = b.momentum.increment();
+            op.interpolate_points(&side.surface.point_ids, u, u_b, &mut side.point_u);
         }
         for ((x, x0), u) in side
             .current

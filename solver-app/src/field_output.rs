@@ -14,6 +14,8 @@ use fv_mesh::{CellToPoint, Vector};
 /// Per-body buffers of the field output.
 struct BodyBuffers {
     cell_to_point: Option<CellToPoint>,
+    /// Initial point positions.
+    initial: Vec<Vector>,
     point_u: Vec<Vector>,
     points: Vec<[f64; 3]>,
     point_displacement: Vec<[f64; 3]>,
@@ -65,6 +67,7 @@ impl FieldOutput {
             .iter()
             .map(|b| BodyBuffers {
                 cell_to_point: (!b.rigid).then(|| CellToPoint::new(&b.mesh, &b.geom)),
+                initial: b.mesh.points.clone(),
                 point_u: vec![Vector::zeros(); b.mesh.n_points()],
                 points: vec![[0.0; 3]; b.mesh.n_points()],
                 point_displacement: vec![[0.0; 3]; b.mesh.n_points()],
@@ -91,22 +94,38 @@ impl FieldOutput {
         contacts: &ContactSet,
     ) -> Result<(), OutputError> {
         for (b, buf) in bodies.iter().zip(self.bodies.iter_mut()) {
-            if let Some(op) = &buf.cell_to_point {
-                op.interpolate(&b.momentum.u, &b.momentum.u_b, &mut buf.point_u);
-            } else {
-                for (u, x0) in buf.point_u.iter_mut().zip(&b.mesh.points) {
-                    *u = b.rigid_displacement(x0);
+            // current points: the mesh (initial, or the start of the increment
+            // under the updated Lagrangian form) moved by the displacement its
+            // operators act on
+            if let Some(op) = &mut buf.cell_to_point {
+                if b.momentum.law.is_updated_lagrangian() {
+                    op.update_weights(&b.mesh, &b.geom);
                 }
-            }
-            for (((x, pd), u), x0) in buf
-                .points
-                .iter_mut()
-                .zip(buf.point_displacement.iter_mut())
-                .zip(&buf.point_u)
-                .zip(&b.mesh.points)
-            {
-                *pd = [u.x, u.y, u.z];
-                *x = [x0.x + u.x, x0.y + u.y, x0.z + u.z];
+                let (u, u_b) = b.momentum.increment();
+                op.interpolate(u, u_b, &mut buf.point_u);
+                for ((x, pd), ((u, xm), x0)) in buf
+                    .points
+                    .iter_mut()
+                    .zip(&mut buf.point_displacement)
+                    .zip(buf.point_u.iter().zip(&b.mesh.points).zip(&buf.initial))
+                {
+                    let xc = xm + u;
+                    let d = xc - x0;
+                    *pd = [d.x, d.y, d.z];
+                    *x = [xc.x, xc.y, xc.z];
+                }
+            } else {
+                for (((x, pd), u), x0) in buf
+                    .points
+                    .iter_mut()
+                    .zip(buf.point_displacement.iter_mut())
+                    .zip(buf.point_u.iter_mut())
+                    .zip(&buf.initial)
+                {
+                    *u = b.rigid_displacement(x0);
+                    *pd = [u.x, u.y, u.z];
+                    *x = [x0.x + u.x, x0.y + u.y, x0.z + u.z];
+                }
             }
             for (i, (d, s)) in buf
                 .displacement
@@ -176,7 +195,7 @@ impl FieldOutput {
                 points: &buf.points,
                 displacement: &buf.displacement,
                 stress: &buf.stress,
-                plastic_strain: None,
+                plastic_strain: b.momentum.law.plastic_strain(),
                 point_displacement: &buf.point_displacement,
                 patches: patches
                     .iter()

@@ -1,9 +1,11 @@
 //! Bodies of a case: mesh, geometry, material and boundary conditions, set
 //! up once and refreshed at every load increment.
 use crate::case::{BodySpec, BoundarySpec, Case, InputError, MaterialModel, StrainKind};
-use fv_discretise::{wedge_rotations, PatchCondition, SolidMomentum};
-use fv_materials::{LinearElastic, Material};
-use fv_mesh::{MeshGeometry, PolyMesh, Tensor, Vector};
+use fv_discretise::{wedge_rotations, Inertia, PatchCondition, SolidMomentum, StressLaw};
+use fv_materials::{
+    Hardening, LargeStrainMaterial, LinearElastic, NeoHookean, NeoHookeanPlastic, StVenantKirchhoff,
+};
+use fv_mesh::{CellToPoint, MeshGeometry, PolyMesh, Tensor, Vector};
 
 /// One body of the case.
 #[derive(Debug)]
@@ -16,9 +18,8 @@ pub struct Body {
     pub mesh: PolyMesh,
     /// Geometry of the mesh.
     pub geom: MeshGeometry,
-    /// Constitutive law.
-    pub material: Box<dyn Material>,
-    /// Discretised momentum balance and fields (unused for rigid bodies).
+    /// Discretised momentum balance, constitutive law and fields (unused
+    /// for rigid bodies).
     pub momentum: SolidMomentum,
     /// Not solved.
     pub rigid: bool,
@@ -31,6 +32,11 @@ pub struct Body {
     /// Motion of a rigid body at the current time: translation, rotation
     /// and its origin (from its first displacement or rigid-motion patch).
     pub rigid_motion: (Vector, Tensor, Vector),
+    /// Cell-to-point interpolation that moves the mesh at the end of every
+    /// increment (updated Lagrangian only, eqs. 3.31–3.32).
+    mesh_motion: Option<CellToPoint>,
+    /// Point displacement of the increment (workspace of the mesh motion).
+    point_du: Vec<Vector>,
 }
 
 impl Body {
@@ -54,6 +60,36 @@ impl Body {
     pub fn rigid_displacement(&self, x0: &Vector) -> Vector {
         let (tr, rot, origin) = &self.rigid_motion;
         tr + (rot - Tensor::identity()) * (x0 - origin)
+    }
+
+    /// End of a converged (or accepted) increment: under the updated
+    /// Lagrangian form the mesh moves by the increment interpolated to its
+    /// points (thesis §3.3.1), the geometry is recomputed and the material
+    /// state committed; with inertia the time levels shift.
+    pub fn end_increment(&mut self) -> Result<(), String> {
+        if self.rigid {
+            return Ok(());
+        }
+        if let Some(op) = &mut self.mesh_motion {
+            let (du, du_b) = self.momentum.increment();
+            op.interpolate(du, du_b, &mut self.point_du);
+            for (x, d) in self.mesh.points.iter_mut().zip(&self.point_du) {
+                *x += d;
+            }
+            self.geom
+                .update(&self.mesh)
+                .map_err(|e| format!("body '{}': the moved mesh is invalid: {e}", self.name))?;
+            if let Some(bad) = self.geom.cell_volumes.iter().position(|v| !(*v > 0.0)) {
+                return Err(format!(
+                    "body '{}': cell {bad} is inverted after the mesh motion (the increment is too large; use more steps)",
+                    self.name
+                ));
+            }
+            op.update_weights(&self.mesh, &self.geom);
+            self.momentum.update_geometry(&self.mesh, &self.geom);
+        }
+        self.momentum.commit_increment();
+        Ok(())
     }
 
     /// Sets the per-face values of every condition at time `t` (eq. 3.19, 3.21).
@@ -106,11 +142,9 @@ impl Body {
                     let tv = Vector::from(value.at(t));
                     v.iter_mut().for_each(|x| *x = tv);
                 }
-                (Some(BoundarySpec::Pressure { value }), PatchCondition::Traction(v)) => {
+                (Some(BoundarySpec::Pressure { value }), PatchCondition::Pressure(v)) => {
                     let p = value.at(t);
-                    for (i, f) in patch.faces().enumerate() {
-                        v[i] = -self.geom.face_normals[f] * p;
-                    }
+                    v.iter_mut().for_each(|x| *x = p);
                 }
                 (
                     Some(BoundarySpec::NormalDisplacement { value }),
@@ -151,19 +185,6 @@ fn rigid_motion_at(
 /// Builds the bodies of a case from their specs and loaded meshes; checks
 /// patch names and the features this build supports.
 pub fn build_bodies(case: &Case, meshes: Vec<PolyMesh>) -> Result<Vec<Body>, InputError> {
-    let src = &case.source;
-    if case.analysis.kind == crate::case::AnalysisKind::Dynamic {
-        return Err(src.error(
-            "analysis.kind",
-            "kind = \"dynamic\" (inertia) is not available yet in this version; use \"static\"",
-        ));
-    }
-    if case.analysis.strain == StrainKind::Large {
-        return Err(src.error(
-            "analysis.strain",
-            "strain = \"large\" (updated Lagrangian) is not available yet in this version; use \"small\"",
-        ));
-    }
     let mut bodies = Vec::with_capacity(meshes.len());
     let mut offset = 0;
     for (bi, (spec, mesh)) in case.bodies.iter().zip(meshes).enumerate() {
@@ -190,19 +211,7 @@ fn build_body(
             format!("mesh of body '{}': {e}", spec.name),
         )
     })?;
-    let m = &spec.material;
-    let material: Box<dyn Material> = match m.model {
-        MaterialModel::LinearElastic => Box::new(
-            LinearElastic::new(m.e, m.nu, m.plane_stress)
-                .map_err(|e| src.error(&format!("body[{bi}].material"), e.to_string()))?,
-        ),
-        MaterialModel::NeoHookean | MaterialModel::NeoHookeanPlastic => {
-            return Err(src.error(
-                &format!("body[{bi}].material.model"),
-                "neo-Hookean models need strain = \"large\", which is not available yet in this version; use model = \"linear-elastic\"",
-            ))
-        }
-    };
+    let law = stress_law(case, bi, spec, mesh.n_cells)?;
     // patch conditions
     let mut patch_specs: Vec<Option<BoundarySpec>> = vec![None; mesh.patches.len()];
     for (name, bc) in &spec.boundary {
@@ -245,12 +254,10 @@ fn build_body(
     for (pi, s) in patch_specs.iter().enumerate() {
         let n = mesh.patches[pi].size;
         conditions.push(match s {
-            None
-            | Some(BoundarySpec::Traction { .. })
-            | Some(BoundarySpec::Pressure { .. })
-            | Some(BoundarySpec::Force { .. }) => {
+            None | Some(BoundarySpec::Traction { .. }) | Some(BoundarySpec::Force { .. }) => {
                 PatchCondition::Traction(vec![Vector::zeros(); n])
             }
+            Some(BoundarySpec::Pressure { .. }) => PatchCondition::Pressure(vec![0.0; n]),
             Some(BoundarySpec::Displacement { .. }) | Some(BoundarySpec::RigidMotion { .. }) => {
                 PatchCondition::Displacement(vec![Vector::zeros(); n])
             }
@@ -265,7 +272,25 @@ fn build_body(
             }
         });
     }
-    let momentum = SolidMomentum::new(&mesh, &geom, material.as_ref(), conditions);
+    let updated_lagrangian = law.is_updated_lagrangian();
+    let mut momentum = SolidMomentum::new(&mesh, &geom, law, conditions);
+    if case.analysis.kind == crate::case::AnalysisKind::Dynamic && !spec.rigid {
+        // rho is required on deformable bodies of dynamic analyses (checked
+        // with the case); the cell mass ρΩ is conserved by the motion
+        let rho = spec.material.rho.unwrap_or(0.0);
+        momentum.inertia = Some(Inertia::new(
+            geom.cell_volumes.iter().map(|v| rho * v).collect(),
+        ));
+    }
+    let mesh_motion = (updated_lagrangian && !spec.rigid).then(|| CellToPoint::new(&mesh, &geom));
+    let point_du = vec![
+        Vector::zeros();
+        if mesh_motion.is_some() {
+            mesh.n_points()
+        } else {
+            0
+        }
+    ];
     let ni = mesh.n_internal_faces();
     let initial_face_centres = geom.face_centres[ni..].to_vec();
     Ok(Body {
@@ -273,12 +298,55 @@ fn build_body(
         index: bi,
         mesh,
         geom,
-        material,
         momentum,
         rigid: spec.rigid,
         offset,
         initial_face_centres,
         patch_specs,
         rigid_motion: (Vector::zeros(), Tensor::identity(), Vector::zeros()),
+        mesh_motion,
+        point_du,
     })
+}
+
+/// The constitutive law of a body and its formulation: Hooke's law on the
+/// initial mesh for `strain = "small"`, the updated Lagrangian form
+/// otherwise. `linear-elastic` under large strain is the St Venant–Kirchhoff
+/// solid (Hooke's law in Green–Lagrange strain, objective); the neo-Hookean
+/// models are finite-strain laws and always run updated Lagrangian.
+fn stress_law(
+    case: &Case,
+    bi: usize,
+    spec: &BodySpec,
+    n_cells: usize,
+) -> Result<StressLaw, InputError> {
+    let src = &case.source;
+    let m = &spec.material;
+    let bad =
+        |e: fv_materials::MaterialError| src.error(&format!("body[{bi}].material"), e.to_string());
+    let large = case.analysis.strain == StrainKind::Large;
+    let law: Box<dyn LargeStrainMaterial> = match m.model {
+        MaterialModel::LinearElastic if !large => {
+            return Ok(StressLaw::Small(Box::new(
+                LinearElastic::new(m.e, m.nu, m.plane_stress).map_err(bad)?,
+            )))
+        }
+        MaterialModel::LinearElastic => {
+            Box::new(StVenantKirchhoff::new(m.e, m.nu, m.plane_stress).map_err(bad)?)
+        }
+        MaterialModel::NeoHookean => {
+            Box::new(NeoHookean::new(m.e, m.nu, m.plane_stress).map_err(bad)?)
+        }
+        MaterialModel::NeoHookeanPlastic => {
+            let yield_stress = m.yield_stress.unwrap_or(0.0);
+            let hardening = match &m.hardening_table {
+                Some(rows) => Hardening::table(rows.clone()),
+                None => Hardening::linear(yield_stress, m.hardening.unwrap_or(0.0)),
+            }
+            .map_err(bad)?;
+            Box::new(NeoHookeanPlastic::new(m.e, m.nu, m.plane_stress, hardening).map_err(bad)?)
+        }
+    };
+    let state = law.new_state(n_cells);
+    Ok(StressLaw::UpdatedLagrangian { law, state })
 }

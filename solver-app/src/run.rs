@@ -134,6 +134,11 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
         failure = Some(msg);
     }
     let dt = case.time.dt();
+    let reassemble_every_increment = bodies
+        .iter()
+        .any(|b| !b.rigid && b.momentum.law.is_updated_lagrangian());
+    let mut t_prev = 0.0;
+    let mut dt_prev = f64::NAN;
     let solve_start = Instant::now();
     let mut cell_iterations = 0.0;
     for k in 1..=case.time.steps {
@@ -148,6 +153,31 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
         for b in bodies.iter_mut() {
             b.refresh_conditions(t);
         }
+        // time step of the temporal term; the matrix diagonal holds m/Δt²
+        let dt_k = t - t_prev;
+        let mut has_inertia = false;
+        for inertia in bodies
+            .iter_mut()
+            .filter_map(|b| b.momentum.inertia.as_mut())
+        {
+            inertia.set_time_step(dt_k);
+            has_inertia = true;
+        }
+        if has_inertia && k > 1 && dt_k != dt_prev {
+            if let Err(e) = solver.assemble_and_factorise(&bodies, &case.solver.linear) {
+                failure = Some(format!("increment {k}: {e}"));
+                break;
+            }
+        }
+        if has_inertia && k == 1 {
+            // the first assembly ran before the time step was known
+            if let Err(e) = solver.assemble_and_factorise(&bodies, &case.solver.linear) {
+                failure = Some(format!("increment {k}: {e}"));
+                break;
+            }
+        }
+        dt_prev = dt_k;
+        t_prev = t;
         let result = solver.solve_increment(&mut bodies, &mut contacts, |outer, res| {
             if trace_outer {
                 eprintln!("  outer {outer}: residual {res:.3e}");
@@ -195,6 +225,32 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
                             &contacts,
                         )
                         .map_err(out_err)?;
+                    }
+                }
+                let accepted =
+                    info.converged || case.solver.on_nonconvergence == OnNonConvergence::Continue;
+                if accepted {
+                    // updated Lagrangian: move the meshes, commit the state;
+                    // dynamics: shift the time levels
+                    let mut moved = Ok(());
+                    for b in bodies.iter_mut() {
+                        if let Err(e) = b.end_increment() {
+                            moved = Err(e);
+                            break;
+                        }
+                    }
+                    match moved {
+                        Ok(()) => {
+                            if reassemble_every_increment {
+                                contacts.end_increment(&bodies);
+                                if let Err(e) =
+                                    solver.assemble_and_factorise(&bodies, &case.solver.linear)
+                                {
+                                    failure = Some(format!("after increment {k}: {e}"));
+                                }
+                            }
+                        }
+                        Err(e) => failure = Some(format!("after increment {k}: {e}")),
                     }
                 }
                 if !info.converged {

@@ -42,6 +42,9 @@ pub enum SolveError {
     /// The contact update failed.
     #[error("{0}")]
     Contact(String),
+    /// The material could not be evaluated (an increment inverts a cell).
+    #[error("{0}")]
+    Material(String),
     /// The matrix is singular: a body cannot carry load in some direction.
     #[error("body '{body}' is not held in the {axis} direction: give it a displacement, symmetry or normal-displacement condition (no rigid-body motion can be solved statically)")]
     Unconstrained {
@@ -236,6 +239,10 @@ impl SegregatedSolver {
                     self.internal_diag[b.offset + b.mesh.neighbour[f] as usize] += a;
                     g += 1;
                 }
+                // temporal term (eq. 3.11)
+                let range = b.offset..b.offset + b.mesh.n_cells;
+                b.momentum
+                    .add_inertia_diagonal(&mut self.internal_diag[range]);
             }
         }
         self.unsolved = unsolved_directions(bodies);
@@ -273,7 +280,7 @@ impl SegregatedSolver {
                 let before: f64 = slice.iter().sum();
                 b.momentum.add_boundary_diagonal(&b.mesh, &b.geom, c, slice);
                 let after: f64 = slice.iter().sum();
-                if check && !(after > before * (1.0 + 1e-12)) {
+                if check && b.momentum.inertia.is_none() && !(after > before * (1.0 + 1e-12)) {
                     let held_by_contact =
                         b.momentum.conditions.iter().any(|c| {
                             matches!(c, fv_discretise::PatchCondition::LinearisedContact(_))
@@ -434,14 +441,14 @@ impl SegregatedSolver {
             contacts.track_opposite_cells(bodies);
             for b in bodies.iter_mut().filter(|b| !b.rigid) {
                 let m = &mut b.momentum;
-                m.update_boundary_values(&b.mesh, &b.geom, b.material.as_ref());
+                m.update_boundary_values(&b.mesh, &b.geom);
             }
             contacts.update(bodies).map_err(SolveError::Contact)?;
             if contacts.is_implicit() {
                 self.refactorise_with_contact(bodies, contacts)?;
             }
         }
-        self.update_fields(bodies);
+        self.update_fields(bodies)?;
         for c in 0..3 {
             let Some(mi) = self.component_matrix[c] else {
                 self.delta.iter_mut().for_each(|d| d[c] = 0.0);
@@ -489,13 +496,15 @@ impl SegregatedSolver {
 
     /// Refreshes boundary values, gradient, stress, residual and boundary
     /// forces from the current displacement (for output after convergence).
-    pub fn update_fields(&self, bodies: &mut [Body]) {
+    pub fn update_fields(&self, bodies: &mut [Body]) -> Result<(), SolveError> {
         for b in bodies.iter_mut().filter(|b| !b.rigid) {
             let m = &mut b.momentum;
-            m.update_boundary_values(&b.mesh, &b.geom, b.material.as_ref());
-            m.update_gradient_and_stress(&b.mesh, b.material.as_ref());
-            m.compute_residual(&b.mesh, &b.geom, b.material.as_ref(), &self.params);
+            m.update_boundary_values(&b.mesh, &b.geom);
+            m.update_gradient_and_stress(&b.mesh)
+                .map_err(|e| SolveError::Material(format!("body '{}': {e}", b.name)))?;
+            m.compute_residual(&b.mesh, &b.geom, &self.params);
         }
+        Ok(())
     }
 
     /// Solves one load increment by outer iterations; on entry the bodies
@@ -526,7 +535,7 @@ impl SegregatedSolver {
                 break;
             }
         }
-        self.update_fields(bodies);
+        self.update_fields(bodies)?;
         if info.converged {
             contacts.commit_increment();
         }

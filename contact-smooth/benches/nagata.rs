@@ -1,0 +1,2 @@
+//! Placeholder until the surface exists.
+fn main() {}

@@ -126,6 +126,14 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
         None
     };
 
+    // the temporal diagonal of the first assembly needs the first time step
+    let first_dt = case.time.dt();
+    for inertia in bodies
+        .iter_mut()
+        .filter_map(|b| b.momentum.inertia.as_mut())
+    {
+        inertia.set_time_step(first_dt);
+    }
     if let Err(e) = solver.assemble_and_factorise(&bodies, &case.solver.linear) {
         let msg = e.to_string();
         if matches!(e, crate::segregated::SolveError::Unconstrained { .. }) {
@@ -138,7 +146,7 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
         .iter()
         .any(|b| !b.rigid && b.momentum.law.is_updated_lagrangian());
     let mut t_prev = 0.0;
-    let mut dt_prev = f64::NAN;
+    let mut dt_prev = case.time.dt();
     let solve_start = Instant::now();
     let mut cell_iterations = 0.0;
     for k in 1..=case.time.steps {
@@ -164,13 +172,6 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
             has_inertia = true;
         }
         if has_inertia && k > 1 && dt_k != dt_prev {
-            if let Err(e) = solver.assemble_and_factorise(&bodies, &case.solver.linear) {
-                failure = Some(format!("increment {k}: {e}"));
-                break;
-            }
-        }
-        if has_inertia && k == 1 {
-            // the first assembly ran before the time step was known
             if let Err(e) = solver.assemble_and_factorise(&bodies, &case.solver.linear) {
                 failure = Some(format!("increment {k}: {e}"));
                 break;

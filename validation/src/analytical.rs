@@ -108,3 +108,111 @@ mod tests {
         assert!((stt - 20.0 / 3.0).abs() < 1e-12);
     }
 }
+
+/// Cauchy stress (principal values) of the compressible neo-Hookean solid
+/// of thesis eq. (2.25), τ = (K/2)(J² − 1) I + μ dev(b̄), for the principal
+/// stretches `l`; written out here independently of `fv-materials`.
+pub fn neo_hookean_principal_stress(mu: f64, bulk: f64, l: [f64; 3]) -> [f64; 3] {
+    let j = l[0] * l[1] * l[2];
+    let b: [f64; 3] = l.map(|x| x * x * j.powf(-2.0 / 3.0));
+    let mean = (b[0] + b[1] + b[2]) / 3.0;
+    b.map(|bi| (0.5 * bulk * (j * j - 1.0) + mu * (bi - mean)) / j)
+}
+
+/// Uniaxial stress of the neo-Hookean solid (eq. 2.25) at axial stretch
+/// `stretch`: the lateral stretch s with σ_22 = σ_33 = 0 (bisection) and
+/// the axial force per unit initial area, σ_11 s².
+pub fn neo_hookean_uniaxial(mu: f64, bulk: f64, stretch: f64) -> (f64, f64) {
+    let lateral = |s: f64| neo_hookean_principal_stress(mu, bulk, [stretch, s, s])[1];
+    let (mut lo, mut hi) = (1e-3, 10.0);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if lateral(lo) * lateral(mid) <= 0.0 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    let s = 0.5 * (lo + hi);
+    let sigma = neo_hookean_principal_stress(mu, bulk, [stretch, s, s])[0];
+    (s, sigma * s * s)
+}
+
+/// Simple shear F = I + γ e_x⊗e_y of the neo-Hookean solid (eq. 2.25):
+/// J = 1, so σ = μ dev(F Fᵀ): returns (σ_xy, σ_xx, σ_yy, σ_zz) =
+/// μ (γ, 2γ²/3, −γ²/3, −γ²/3).
+pub fn neo_hookean_simple_shear(mu: f64, gamma: f64) -> [f64; 4] {
+    let g2 = gamma * gamma;
+    [
+        mu * gamma,
+        mu * 2.0 * g2 / 3.0,
+        -mu * g2 / 3.0,
+        -mu * g2 / 3.0,
+    ]
+}
+
+/// Tip of an inextensible Euler–Bernoulli cantilever under a tip load of
+/// fixed direction, perpendicular to the undeformed axis (the elastica):
+/// EI θ'' = −P cos θ, θ(0) = 0, θ'(L) = 0, solved by shooting on θ'(0)
+/// with RK4. Returns (axial shortening, transverse deflection) divided by
+/// L for the load parameter k = PL²/EI (Mattiasson 1981 tabulates k = 1:
+/// 0.05643, 0.30172).
+pub fn elastica_cantilever_tip(k: f64) -> (f64, f64) {
+    // nondimensional: s in [0, 1], θ'' = −k cos θ
+    let n = 4000;
+    let h = 1.0 / n as f64;
+    let integrate = |kappa0: f64| -> (f64, f64, f64) {
+        // state: θ, θ', x, y
+        let mut y = [0.0, kappa0, 0.0, 0.0];
+        let rhs = |y: &[f64; 4]| [y[1], -k * y[0].cos(), y[0].cos(), y[0].sin()];
+        for _ in 0..n {
+            let k1 = rhs(&y);
+            let y2 = std::array::from_fn(|i| y[i] + 0.5 * h * k1[i]);
+            let k2 = rhs(&y2);
+            let y3 = std::array::from_fn(|i| y[i] + 0.5 * h * k2[i]);
+            let k3 = rhs(&y3);
+            let y4 = std::array::from_fn(|i| y[i] + h * k3[i]);
+            let k4 = rhs(&y4);
+            for i in 0..4 {
+                y[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+            }
+        }
+        (y[1], y[2], y[3])
+    };
+    // θ'(1) = 0: bisection on θ'(0) in (0, k]
+    let (mut lo, mut hi) = (0.0, k);
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if integrate(mid).0 > 0.0 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    let (_, x, y) = integrate(0.5 * (lo + hi));
+    (1.0 - x, y)
+}
+
+#[cfg(test)]
+mod large_strain_tests {
+    use super::*;
+
+    #[test]
+    fn elastica_matches_mattiasson_table() {
+        let (u, v) = elastica_cantilever_tip(1.0);
+        assert!((u - 0.05643).abs() < 2e-4, "u/L = {u}");
+        assert!((v - 0.30172).abs() < 2e-4, "v/L = {v}");
+        let (u, v) = elastica_cantilever_tip(2.0);
+        assert!((u - 0.16064).abs() < 2e-4, "u/L = {u}");
+        assert!((v - 0.49346).abs() < 2e-4, "v/L = {v}");
+    }
+
+    #[test]
+    fn neo_hookean_small_strain_limit_is_hooke() {
+        // E = 1000, ν = 0.3: μ = 384.6, K = 833.3; uniaxial force ≈ E ε
+        let (mu, bulk) = (1000.0 / 2.6, 1000.0 / 1.2);
+        let (s, f) = neo_hookean_uniaxial(mu, bulk, 1.0 + 1e-6);
+        assert!((f / 1e-6 - 1000.0).abs() < 0.01, "{f}");
+        assert!(((1.0 - s) / 1e-6 - 0.3).abs() < 1e-4, "{s}");
+    }
+}

@@ -61,3 +61,71 @@ pub fn shared_dir() -> Option<std::path::PathBuf> {
     let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared");
     p.is_dir().then_some(p)
 }
+
+/// The rows of a run's `history.csv`, by column.
+#[derive(Debug, Clone, Default)]
+pub struct HistoryTable {
+    /// Column names of the header.
+    pub columns: Vec<String>,
+    /// Values, row by row.
+    pub rows: Vec<Vec<f64>>,
+}
+
+impl HistoryTable {
+    /// Values of the column named `name`, one per increment.
+    ///
+    /// # Panics
+    /// When there is no such column (a test helper).
+    pub fn column(&self, name: &str) -> Vec<f64> {
+        let Some(c) = self.columns.iter().position(|n| n == name) else {
+            panic!("no column '{name}' in {:?}", self.columns)
+        };
+        self.rows.iter().map(|r| r[c]).collect()
+    }
+}
+
+/// Like [`run_toml`] but writes the results into a fresh temporary folder
+/// and returns the parsed `history.csv` as well (mesh paths must be absolute
+/// or generators).
+pub fn run_toml_with_history(text: &str) -> (RunOutcome, HistoryTable) {
+    let dir = std::env::temp_dir().join(format!(
+        "fvc-history-{}-{}",
+        std::process::id(),
+        HISTORY_RUNS.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
+    ));
+    let case = match parse_case(text, &dir.join("case.toml")) {
+        Ok(c) => c,
+        Err(e) => panic!("test case does not parse: {e}"),
+    };
+    let out = match run_case(
+        &case,
+        &RunOptions {
+            output: Some(dir.clone()),
+            quiet: true,
+            ..Default::default()
+        },
+    ) {
+        Ok(o) => o,
+        Err(e) => panic!("test case failed to start: {e}"),
+    };
+    let path = dir.join(&case.title).join("history.csv");
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut lines = text.lines();
+    let columns = lines
+        .next()
+        .unwrap_or_default()
+        .split(',')
+        .map(str::to_string)
+        .collect();
+    let rows = lines
+        .map(|l| {
+            l.split(',')
+                .map(|v| v.parse().unwrap_or(f64::NAN))
+                .collect()
+        })
+        .collect();
+    let _ = std::fs::remove_dir_all(&dir);
+    (out, HistoryTable { columns, rows })
+}
+
+static HISTORY_RUNS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);

@@ -1,0 +1,293 @@
+//! Updated Lagrangian large-strain solver (issue 6) against closed forms:
+//! neo-Hookean uniaxial stretch and simple shear (thesis eq. 2.25), J2
+//! plasticity against a single-point return mapping, and a cantilever
+//! against the elastica.
+use fv_materials::{Hardening, LargeStrainMaterial, NeoHookeanPlastic, PointState, Tensor};
+use validation::analytical::{
+    elastica_cantilever_tip, neo_hookean_simple_shear, neo_hookean_uniaxial,
+};
+use validation::{run_toml, run_toml_with_history};
+
+const E: f64 = 1000.0;
+const NU: f64 = 0.3;
+
+fn moduli() -> (f64, f64) {
+    (E / (2.0 * (1.0 + NU)), E / (3.0 * (1.0 - 2.0 * NU)))
+}
+
+#[test]
+fn neo_hookean_cube_uniaxial_stretch_to_1_5() {
+    let case = format!(
+        r#"
+title = "uniaxial"
+[analysis]
+strain = "large"
+[time]
+end = 1.0
+steps = 10
+[solver]
+tolerance = 1e-8
+[[body]]
+name = "cube"
+mesh = {{ generator = "box", min = [0, 0, 0], max = [1, 1, 1], cells = [4, 4, 4] }}
+material = {{ model = "neo-hookean", E = {E}, nu = {NU} }}
+[body.boundary.xmin]
+type = "symmetry"
+[body.boundary.ymin]
+type = "symmetry"
+[body.boundary.zmin]
+type = "symmetry"
+[body.boundary.xmax]
+type = "normal-displacement"
+value = {{ table = [[0.0, 0.0], [1.0, 0.5]] }}
+"#
+    );
+    let (out, history) = run_toml_with_history(&case);
+    assert!(out.converged, "{:?}", out.failure);
+    let (mu, bulk) = moduli();
+    let b = &out.bodies[0];
+    let fx = history.column("cube/xmax:Fx");
+    let mut worst = 0.0f64;
+    for (row, &f) in fx.iter().enumerate() {
+        let stretch = 1.0 + 0.05 * (row + 1) as f64;
+        let (_, exact) = neo_hookean_uniaxial(mu, bulk, stretch);
+        worst = worst.max((f - exact).abs() / exact);
+    }
+    let (s, exact) = neo_hookean_uniaxial(mu, bulk, 1.5);
+    // the free lateral faces contract to s
+    let ymax: f64 = b.mesh.points.iter().map(|p| p.y).fold(0.0, f64::max);
+    eprintln!(
+        "uniaxial neo-Hookean λ = 1.5: F = {:.6} (closed form {exact:.6}), worst error over the path {:.2e}; lateral stretch {ymax:.6} (closed form {s:.6}); {} outer iterations",
+        fx[fx.len() - 1],
+        worst,
+        out.summary.outer_iterations
+    );
+    assert!(worst < 2e-3, "reaction force error {worst}");
+    assert!((ymax - s).abs() < 2e-3 * s, "lateral stretch {ymax} vs {s}");
+}
+
+#[test]
+fn neo_hookean_simple_shear_to_gamma_1() {
+    // a long strip between two clamped faces: away from its free ends the
+    // state is homogeneous simple shear (end effects decay within ~2 heights)
+    let case = format!(
+        r#"
+title = "shear"
+[analysis]
+strain = "large"
+[time]
+end = 1.0
+steps = 20
+[solver]
+tolerance = 1e-7
+[[body]]
+name = "strip"
+mesh = {{ generator = "box", min = [0, 0, 0], max = [16, 1, 0.1], cells = [128, 8, 1] }}
+material = {{ model = "neo-hookean", E = {E}, nu = {NU} }}
+[body.boundary.ymin]
+type = "displacement"
+value = [0, 0, 0]
+[body.boundary.ymax]
+type = "displacement"
+value = {{ table = [[0.0, [0, 0, 0]], [1.0, [1.0, 0, 0]]] }}
+[body.boundary.zmin]
+type = "empty"
+[body.boundary.zmax]
+type = "empty"
+"#
+    );
+    let out = run_toml(&case, std::path::Path::new("."));
+    assert!(out.converged, "{:?}", out.failure);
+    let (mu, _) = moduli();
+    let exact = neo_hookean_simple_shear(mu, 1.0);
+    let b = &out.bodies[0];
+    let mut sum = [0.0; 4];
+    let mut n = 0.0;
+    for (c, s) in b.geom.cell_centres.iter().zip(&b.momentum.sigma) {
+        // cells of the middle (in the deformed configuration, x shifted by γ y)
+        if (c.x - c.y - 8.0).abs() < 1.0 {
+            sum[0] += s[(0, 1)];
+            sum[1] += s[(0, 0)];
+            sum[2] += s[(1, 1)];
+            sum[3] += s[(2, 2)];
+            n += 1.0;
+        }
+    }
+    let names = ["σ_xy", "σ_xx", "σ_yy", "σ_zz"];
+    for i in 0..4 {
+        let v = sum[i] / n;
+        let err = (v - exact[i]).abs() / exact[i].abs();
+        eprintln!(
+            "simple shear γ = 1: {} = {v:.5} (closed form {:.5}), error {:.2e}",
+            names[i], exact[i], err
+        );
+        assert!(err < 5e-3, "{} error {err}", names[i]);
+    }
+    eprintln!(
+        "simple shear: {} outer iterations",
+        out.summary.outer_iterations
+    );
+}
+
+/// Uniaxial-stress response of one material point of `law` along the
+/// axial stretches `stretches` (lateral stretch from σ_22 = 0 by bisection
+/// at every step): the force per unit initial area, σ_11 s², per step.
+fn single_point_uniaxial(law: &NeoHookeanPlastic, stretches: &[f64]) -> Vec<f64> {
+    let mut state = PointState::default();
+    let (mut l_old, mut s_old) = (1.0, 1.0);
+    let mut out = Vec::with_capacity(stretches.len());
+    for &l in stretches {
+        let trial = |s: f64| {
+            let g = Tensor::from_diagonal(&nalgebra::Vector3::new(
+                l / l_old - 1.0,
+                s / s_old - 1.0,
+                s / s_old - 1.0,
+            ));
+            law.update_point(&state, &g)
+        };
+        let lateral = |s: f64| trial(s).map_or(f64::NAN, |(sig, _)| sig[(1, 1)]);
+        let (mut lo, mut hi) = (0.5 * s_old, 1.5 * s_old);
+        for _ in 0..100 {
+            let mid = 0.5 * (lo + hi);
+            if lateral(lo) * lateral(mid) <= 0.0 {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        let s = 0.5 * (lo + hi);
+        let (sig, next) = trial(s).expect("reference point inverts");
+        out.push(sig[(0, 0)] * s * s);
+        state = next;
+        l_old = l;
+        s_old = s;
+    }
+    out
+}
+
+#[test]
+fn j2_uniaxial_tension_to_10_percent_and_back() {
+    let (e, nu, sy, h) = (200e3, 0.3, 250.0, 2000.0);
+    let steps = 40;
+    let case = format!(
+        r#"
+title = "j2"
+[analysis]
+strain = "large"
+[time]
+end = 2.0
+steps = {steps}
+[solver]
+tolerance = 1e-9
+[[body]]
+name = "cube"
+mesh = {{ generator = "box", min = [0, 0, 0], max = [1, 1, 1], cells = [2, 2, 2] }}
+material = {{ model = "neo-hookean-plastic", E = {e}, nu = {nu}, yield = {sy}, hardening = {h} }}
+[body.boundary.xmin]
+type = "symmetry"
+[body.boundary.ymin]
+type = "symmetry"
+[body.boundary.zmin]
+type = "symmetry"
+[body.boundary.xmax]
+type = "normal-displacement"
+value = {{ table = [[0.0, 0.0], [1.0, 0.1], [2.0, 0.0]] }}
+"#
+    );
+    let (out, history) = run_toml_with_history(&case);
+    assert!(out.converged, "{:?}", out.failure);
+    let time = history.column("time");
+    let fx = history.column("cube/xmax:Fx");
+    let stretch: Vec<f64> = time
+        .iter()
+        .map(|&t| 1.0 + if t <= 1.0 { 0.1 * t } else { 0.1 * (2.0 - t) })
+        .collect();
+    let law = NeoHookeanPlastic::new(e, nu, false, Hardening::linear(sy, h).unwrap()).unwrap();
+    let reference = single_point_uniaxial(&law, &stretch);
+    let peak = reference.iter().cloned().fold(0.0, f64::max);
+    let mut worst = 0.0f64;
+    for (f, r) in fx.iter().zip(&reference) {
+        worst = worst.max((f - r).abs() / peak);
+    }
+    // residual strain: where the unloading branch crosses zero force
+    let crossing = |f: &[f64]| {
+        (steps / 2 - 1..steps - 1)
+            .find(|&i| f[i] > 0.0 && f[i + 1] <= 0.0)
+            .map(|i| {
+                let w = f[i] / (f[i] - f[i + 1]);
+                stretch[i] + w * (stretch[i + 1] - stretch[i]) - 1.0
+            })
+    };
+    let (res_fv, res_ref) = (crossing(&fx), crossing(&reference));
+    let eps_p = out.bodies[0].momentum.law.plastic_strain().map(|p| p[0]);
+    eprintln!(
+        "J2 uniaxial to 10 % and back: worst force error {:.2e} of the peak {peak:.2}; residual strain at zero force {res_fv:?} (reference {res_ref:?}); final ε̄_p {eps_p:?}; {} outer iterations",
+        worst, out.summary.outer_iterations
+    );
+    assert!(worst < 5e-3, "stress-strain curve error {worst}");
+    let (a, b) = (
+        res_fv.expect("no zero crossing"),
+        res_ref.expect("no zero crossing"),
+    );
+    assert!((a - b).abs() < 5e-3 * b, "residual strain {a} vs {b}");
+    // the residual strain is the plastic one: 10 % less the elastic recovery
+    assert!(a > 0.095 && a < 0.1, "residual strain {a}");
+}
+
+#[test]
+fn cantilever_with_large_tip_load_follows_the_elastica() {
+    // L = 10, h = 0.5 (slender: shear adds 0.15 %), ν = 0, k = PL²/EI = 2
+    let (l, h, t, e) = (10.0, 0.5, 0.1, 1.0e5);
+    let k = 2.0;
+    let i = t * h * h * h / 12.0;
+    let p = k * e * i / (l * l);
+    let traction = -p / (h * t);
+    let case = format!(
+        r#"
+title = "elastica"
+[analysis]
+strain = "large"
+[time]
+end = 1.0
+steps = 10
+[solver]
+tolerance = 1e-7
+max_outer = 100000
+[[body]]
+name = "beam"
+mesh = {{ generator = "box", min = [0, -0.25, 0], max = [{l}, 0.25, {t}], cells = [80, 4, 1] }}
+material = {{ model = "linear-elastic", E = {e}, nu = 0.0 }}
+[body.boundary.xmin]
+type = "displacement"
+value = [0, 0, 0]
+[body.boundary.xmax]
+type = "traction"
+value = {{ table = [[0.0, [0, 0, 0]], [1.0, [0, {traction}, 0]]] }}
+[body.boundary.zmin]
+type = "empty"
+[body.boundary.zmax]
+type = "empty"
+"#
+    );
+    let out = run_toml(&case, std::path::Path::new("."));
+    assert!(out.converged, "{:?}", out.failure);
+    let b = &out.bodies[0];
+    // tip: mean of the end-face displacement
+    let pi = b.mesh.patch_index("xmax").unwrap();
+    let ni = b.mesh.n_internal_faces();
+    let faces = b.mesh.patches[pi].faces();
+    let n = faces.len() as f64;
+    let tip: nalgebra::Vector3<f64> = faces
+        .map(|f| b.momentum.u_b[f - ni])
+        .sum::<nalgebra::Vector3<f64>>()
+        / n;
+    let (u_ref, v_ref) = elastica_cantilever_tip(k);
+    let (u, v) = (-tip.x / l, -tip.y / l);
+    eprintln!(
+        "cantilever k = PL²/EI = {k}: tip u/L = {u:.5} (elastica {u_ref:.5}), v/L = {v:.5} (elastica {v_ref:.5}); {} outer iterations, {:.1} per increment",
+        out.summary.outer_iterations,
+        out.summary.outer_iterations as f64 / 10.0
+    );
+    assert!((v - v_ref).abs() < 0.02 * v_ref, "v/L {v} vs {v_ref}");
+    assert!((u - u_ref).abs() < 0.02 * u_ref, "u/L {u} vs {u_ref}");
+}

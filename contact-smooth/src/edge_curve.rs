@@ -87,7 +87,7 @@ impl EdgeCurveParams {
 }
 
 /// Linear ramp: 0 for `x ≤ t`, 1 for `x ≥ 2t` (a step at `t = 0`).
-fn ramp(x: Real, t: Real) -> Real {
+pub(crate) fn parallel_ramp(x: Real, t: Real) -> Real {
     if t <= 0.0 {
         return if x > 0.0 { 1.0 } else { 0.0 };
     }
@@ -127,7 +127,7 @@ pub fn curvature_parameter(
     // angle between the normals, accurate at both ends of [0, π]
     let theta = 2.0 * ww.sqrt().atan2(vv.sqrt());
     let tol = params.parallel_angle;
-    let s = ramp(theta, tol) * ramp(std::f64::consts::PI - theta, tol);
+    let s = parallel_ramp(theta, tol) * parallel_ramp(std::f64::consts::PI - theta, tol);
     if s == 0.0 {
         return Vector::zeros();
     }

@@ -195,7 +195,8 @@ pub struct PointNormalParams {
     /// length. Default 10⁻⁶.
     pub symmetry_tolerance: Real,
     /// Average the unit *corner* normals `eᵢ × eᵢ₊₁ / |eᵢ × eᵢ₊₁|` instead of
-    /// the face normals `n_b,i` (the same for triangles). Max's weighting
+    /// the face normals `n_b,i` (the same for triangles; the face normal is
+    /// kept at a reflex, collapsed or nearly straight corner, sin α ≤ 10⁻⁶). Max's weighting
     /// ([`NormalWeighting::AngleEdgeLengthReciprocal`]) with corner normals
     /// is exact for any closed fan of points on a sphere, quadrilaterals
     /// included. Default `true`; `false` is eq. 4.80 as printed.
@@ -361,7 +362,8 @@ impl PointNormals {
     ///
     /// `face_normals` are the unit face normals, zero for a degenerate face
     /// (which is then ignored). A point whose weighted sum vanishes gets the
-    /// unweighted sum, and zero if that vanishes too (no valid face).
+    /// unweighted sum of its face normals, and zero if that vanishes too (no
+    /// valid face).
     ///
     /// Fails if the array lengths do not match the table.
     pub fn compute(
@@ -400,17 +402,14 @@ impl PointNormals {
                 let x = points[p];
                 let e1 = points[poly[(c.index + k - 1) % k]] - x;
                 let e2 = points[poly[(c.index + 1) % k]] - x;
-                // e₂ × e₁: the right-hand rule of the face's vertex order
-                let n = if corner {
-                    match unit_or_zero(e2.cross(&e1)) {
-                        Some(m) => m,
-                        None => continue,
-                    }
-                } else {
-                    nf
+                // e₂ × e₁: the right-hand rule of the face's vertex order;
+                // the face normal at a straight, reflex or collapsed corner
+                let n = match corner_normal(&e1, &e2) {
+                    Some(m) if corner && m.dot(&nf) > 0.0 => m,
+                    _ => nf,
                 };
                 sum += weighting.weight(&e1, &e2) * n;
-                plain += n;
+                plain += nf;
             }
             *n_out = unit_or_zero(sum)
                 .or_else(|| unit_or_zero(plain))
@@ -521,6 +520,18 @@ impl PointNormals {
             }
         }
     }
+}
+
+/// Smallest sine of a corner angle for its own normal to be used: below
+/// it the direction of `e₂ × e₁` is dominated by rounding.
+const MIN_CORNER_SINE: Real = 1e-6;
+
+/// Unit `e₂ × e₁`, `None` at a (nearly) straight or collapsed corner.
+fn corner_normal(e1: &Vector, e2: &Vector) -> Option<Vector> {
+    let c = e2.cross(e1);
+    (c.norm() > MIN_CORNER_SINE * e1.norm() * e2.norm())
+        .then(|| unit_or_zero(c))
+        .flatten()
 }
 
 /// `v / |v|`, or `None` if `|v|` is zero or not finite (or tiny: below 10⁻³⁰⁰).

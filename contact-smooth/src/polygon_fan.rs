@@ -18,6 +18,12 @@
 //! This is the condition under which eq. 4.77 has no singular part (a
 //! chord of a sphere is orthogonal to the sum of its end normals), so it
 //! puts `x_c` on a sphere exactly and on a smooth surface to `O(h⁴)`.
+//!
+//! Like the curvature parameter ([`crate::curvature_parameter`]), the lift
+//! is switched off when every vertex normal is within
+//! [`EdgeCurveParams::parallel_angle`] of `n_c`, and ramped in up to twice
+//! that angle, so a flat polygon gives an exactly flat fan.
+use crate::edge_curve::{parallel_ramp, EdgeCurveParams};
 use crate::face_geometry::polygon_centre_area;
 use fv_mesh::{Real, Vector};
 
@@ -28,6 +34,7 @@ pub fn fan_centre(
     points: &[Vector],
     normals: &[Vector],
     poly: &[usize],
+    params: &EdgeCurveParams,
 ) -> Option<(Vector, Vector)> {
     if poly.is_empty() {
         return None;
@@ -39,14 +46,18 @@ pub fn fan_centre(
         .try_normalize(1e-300)
         .or_else(|| polygon_centre_area(points, poly).1.try_normalize(1e-300))?;
     let (mut num, mut den) = (0.0, 0.0);
+    let mut spread: Real = 0.0;
     for &p in poly {
-        let m = normals[p] + nc;
+        let n = normals[p];
+        let m = n + nc;
         let a = nc.dot(&m);
         num += (mean - points[p]).dot(&m) * a;
         den += a * a;
+        spread = spread.max(n.cross(&nc).norm().atan2(n.dot(&nc)));
     }
     let t = if den > 1e-300 { -num / den } else { 0.0 };
-    let xc = mean + nc * if t.is_finite() { t } else { 0.0 };
+    let s = parallel_ramp(spread, params.parallel_angle);
+    let xc = mean + nc * if t.is_finite() { s * t } else { 0.0 };
     Some((xc, nc))
 }
 
@@ -56,6 +67,7 @@ mod tests {
 
     #[test]
     fn centre_of_a_spherical_polygon_is_on_the_sphere() {
+        let p = EdgeCurveParams::default();
         // irregular pentagon on the unit sphere around the pole
         let angles: [Real; 5] = [0.0, 1.1, 2.5, 3.6, 5.0];
         let pts: Vec<Vector> = angles
@@ -67,7 +79,7 @@ mod tests {
             })
             .collect();
         let poly = [0, 1, 2, 3, 4];
-        let (xc, nc) = fan_centre(&pts, &pts, &poly).unwrap();
+        let (xc, nc) = fan_centre(&pts, &pts, &poly, &p).unwrap();
         assert!((xc.norm() - 1.0).abs() < 1e-3, "{}", xc.norm());
         assert!((nc.norm() - 1.0).abs() < 1e-15);
         // regular: exact
@@ -77,10 +89,16 @@ mod tests {
                 Vector::new(0.4 * a.cos(), 0.4 * a.sin(), (1.0 - 0.16_f64).sqrt())
             })
             .collect();
-        let (xc, _) = fan_centre(&reg, &reg, &[0, 1, 2, 3, 4, 5]).unwrap();
+        let (xc, _) = fan_centre(&reg, &reg, &[0, 1, 2, 3, 4, 5], &p).unwrap();
         assert!((xc - Vector::z()).norm() < 1e-15);
-        assert!(fan_centre(&reg, &reg, &[]).is_none());
+        assert!(fan_centre(&reg, &reg, &[], &p).is_none());
         let zero = vec![Vector::zeros(); 6];
-        assert!(fan_centre(&zero, &zero, &[0, 1, 2]).is_none());
+        assert!(fan_centre(&zero, &zero, &[0, 1, 2], &p).is_none());
+        // flat polygon with nearly parallel normals: not lifted
+        let flat = [Vector::zeros(), Vector::x(), Vector::y()];
+        let t = 0.05_f64.to_radians();
+        let n = [Vector::z(), Vector::new(t.sin(), 0.0, t.cos()), Vector::z()];
+        let (xc, _) = fan_centre(&flat, &n, &[0, 1, 2], &p).unwrap();
+        assert_eq!(xc.z, 0.0);
     }
 }

@@ -322,7 +322,7 @@ impl NagataSurface {
                 self.quads[self.slots[f]] =
                     QuadPatch::new([x(0), x(1), x(2), x(3)], [n(0), n(1), n(2), n(3)], &params);
                 PatchKind::Quad
-            } else if let Some((xc, nc)) = fan_centre(&self.points, &self.normals, poly) {
+            } else if let Some((xc, nc)) = fan_centre(&self.points, &self.normals, poly, &params) {
                 let start = self.fan_offsets[f];
                 for i in 0..k {
                     let corners = [xc, x(i), x(i + 1)];

@@ -7,6 +7,100 @@ use fv_materials::{
 };
 use fv_mesh::{CellToPoint, MeshGeometry, PolyMesh, Tensor, Vector};
 
+/// Relative tolerance of a force-controlled patch: the patch force must
+/// be within this fraction of the target force (Algorithm 1, line 1).
+pub const FORCE_TOLERANCE: f64 = 1e-4;
+
+/// A force-controlled patch (`type = "force"`, thesis Algorithm 1): a
+/// uniform patch displacement corrected, whenever the outer loop has settled
+/// for the current displacement, until the force exerted on the body through
+/// the patch equals the target. The correction is the secant (quasi-Newton)
+/// step of Algorithm 1 generalised to the force vector: Broyden's update of
+/// a 3×3 stiffness, so the coupling of the components (a laterally held
+/// face pulled along its normal) does not spoil the step.
+#[derive(Debug, Clone)]
+pub struct ForceControl {
+    /// Patch index.
+    pub patch: usize,
+    /// Target force at the current time.
+    pub target: Vector,
+    /// The prescribed uniform displacement.
+    pub displacement: Vector,
+    /// The patch force at the last check.
+    pub force: Vector,
+    /// (displacement, force) of the previous correction.
+    previous: Option<(Vector, Vector)>,
+    /// Secant stiffness dF/du (initially K·A/L of the body times I).
+    stiffness: Tensor,
+    /// Largest correction per step (a quarter of the body's extent).
+    max_step: f64,
+    /// Smallest force tolerance, for a zero target (K·A times 1e-9).
+    force_floor: f64,
+}
+
+impl ForceControl {
+    /// The step Δu = S⁻¹ (target − force) on the solved components,
+    /// limited to `max_step`.
+    fn step(&self, force: &Vector, solved: [bool; 3]) -> Vector {
+        let mut s = self.stiffness;
+        let mut r = self.target - force;
+        for c in (0..3).filter(|&c| !solved[c]) {
+            for k in 0..3 {
+                s[(c, k)] = 0.0;
+                s[(k, c)] = 0.0;
+            }
+            s[(c, c)] = 1.0;
+            r[c] = 0.0;
+        }
+        let du = s.lu().solve(&r).unwrap_or_else(Vector::zeros);
+        let n = du.norm();
+        if n > self.max_step {
+            du * (self.max_step / n)
+        } else {
+            du
+        }
+    }
+
+    /// Algorithm 1, lines 3–6, with the patch force `force`: returns true
+    /// when it is within tolerance, otherwise sets the corrected
+    /// displacement. Components not solved (2-D, wedge) are left alone.
+    fn correct(&mut self, force: Vector, solved: [bool; 3]) -> bool {
+        self.force = force;
+        let mut err = force - self.target;
+        for c in 0..3 {
+            if !solved[c] {
+                err[c] = 0.0;
+            }
+        }
+        if err.norm() <= FORCE_TOLERANCE * self.target.norm() + self.force_floor {
+            return true;
+        }
+        let u = self.displacement;
+        if let Some((u0, f0)) = self.previous {
+            // Broyden: S ← S + ((Δf − S Δu) Δuᵀ)/(Δu·Δu), kept only while
+            // the stiffness stays positive along the step
+            let du = u - u0;
+            let df = force - f0;
+            let dd = du.norm_squared();
+            if dd > 0.0 && du.dot(&df) > 0.0 {
+                self.stiffness += (df - self.stiffness * du) * du.transpose() / dd;
+            }
+        }
+        self.previous = Some((u, force));
+        self.displacement += self.step(&force, solved);
+        false
+    }
+
+    /// Predictor at a new target: the step from the force of the last
+    /// increment with the current stiffness.
+    fn predict(&mut self, target: Vector) {
+        self.target = target;
+        let all = [true; 3];
+        let du = self.step(&self.force.clone(), all);
+        self.displacement += du;
+    }
+}
+
 /// One body of the case.
 #[derive(Debug)]
 pub struct Body {
@@ -37,6 +131,8 @@ pub struct Body {
     mesh_motion: Option<CellToPoint>,
     /// Point displacement of the increment (workspace of the mesh motion).
     point_du: Vec<Vector>,
+    /// Force-controlled patches.
+    pub force_controls: Vec<ForceControl>,
 }
 
 impl Body {
@@ -60,6 +156,24 @@ impl Body {
     pub fn rigid_displacement(&self, x0: &Vector) -> Vector {
         let (tr, rot, origin) = &self.rigid_motion;
         tr + (rot - Tensor::identity()) * (x0 - origin)
+    }
+
+    /// Algorithm 1 for every force-controlled patch of the body, after the
+    /// outer loop converged for the current patch displacements: true when
+    /// every patch force is within tolerance of its target; otherwise the
+    /// displacements are corrected (secant method) and the loop goes on.
+    pub fn correct_force_controls(&mut self, solved: [bool; 3]) -> bool {
+        let mut all = true;
+        for fc in &mut self.force_controls {
+            let force = self.momentum.patch_force(&self.mesh, fc.patch);
+            if !fc.correct(force, solved) {
+                all = false;
+                if let PatchCondition::Displacement(v) = &mut self.momentum.conditions[fc.patch] {
+                    v.iter_mut().for_each(|x| *x = fc.displacement);
+                }
+            }
+        }
+        all
     }
 
     /// End of a converged (or accepted) increment: under the updated
@@ -136,6 +250,14 @@ impl Body {
                     for (i, f) in patch.faces().enumerate() {
                         let x0 = self.initial_face_centres[f - ni];
                         v[i] = tr + (rot - Tensor::identity()) * (x0 - origin);
+                    }
+                }
+                (Some(BoundarySpec::Force { value }), PatchCondition::Displacement(v)) => {
+                    // predictor from the slope of the last increment
+                    let target = Vector::from(value.at(t));
+                    if let Some(fc) = self.force_controls.iter_mut().find(|fc| fc.patch == pi) {
+                        fc.predict(target);
+                        v.iter_mut().for_each(|x| *x = fc.displacement);
                     }
                 }
                 (Some(BoundarySpec::Traction { value }), PatchCondition::Traction(v)) => {
@@ -227,10 +349,10 @@ fn build_body(
                 ),
             ));
         };
-        if let BoundarySpec::Force { .. } = bc {
+        if let (BoundarySpec::Force { .. }, true) = (bc, spec.rigid) {
             return Err(src.error(
                 &key,
-                "type = \"force\" (force-controlled loading, Algorithm 1) is not available yet in this version; prescribe a displacement instead",
+                "type = \"force\" needs a deformable body (the force is the stress integrated over the patch); move a rigid body with \"displacement\" or \"rigid-motion\"",
             ));
         }
         patch_specs[pi] = Some(bc.clone());
@@ -254,8 +376,11 @@ fn build_body(
     for (pi, s) in patch_specs.iter().enumerate() {
         let n = mesh.patches[pi].size;
         conditions.push(match s {
-            None | Some(BoundarySpec::Traction { .. }) | Some(BoundarySpec::Force { .. }) => {
+            None | Some(BoundarySpec::Traction { .. }) => {
                 PatchCondition::Traction(vec![Vector::zeros(); n])
+            }
+            Some(BoundarySpec::Force { .. }) => {
+                PatchCondition::Displacement(vec![Vector::zeros(); n])
             }
             Some(BoundarySpec::Pressure { .. }) => PatchCondition::Pressure(vec![0.0; n]),
             Some(BoundarySpec::Displacement { .. }) | Some(BoundarySpec::RigidMotion { .. }) => {
@@ -291,6 +416,12 @@ fn build_body(
             0
         }
     ];
+    let force_controls = patch_specs
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| matches!(s, Some(BoundarySpec::Force { .. })))
+        .map(|(pi, _)| force_control(&mesh, &geom, momentum.k, pi))
+        .collect();
     let ni = mesh.n_internal_faces();
     let initial_face_centres = geom.face_centres[ni..].to_vec();
     Ok(Body {
@@ -306,7 +437,41 @@ fn build_body(
         rigid_motion: (Vector::zeros(), Tensor::identity(), Vector::zeros()),
         mesh_motion,
         point_du,
+        force_controls,
     })
+}
+
+/// A force control on patch `pi` with the initial secant slope K·A/L: the
+/// patch area A and the extent L of the body along the patch's mean normal
+/// (the stiffness of a bar of the body's length).
+fn force_control(mesh: &PolyMesh, geom: &MeshGeometry, k: f64, pi: usize) -> ForceControl {
+    let faces = mesh.patches[pi].faces();
+    let area_vector: Vector = faces.clone().map(|f| geom.face_areas[f]).sum();
+    let area: f64 = faces.map(|f| geom.face_mag[f]).sum();
+    let n = if area_vector.norm() > 0.0 {
+        area_vector.normalize()
+    } else {
+        Vector::x()
+    };
+    let (lo, hi) = mesh
+        .points
+        .iter()
+        .map(|p| p.dot(&n))
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+            (a.min(x), b.max(x))
+        });
+    let extent = (hi - lo).max(1e-300);
+    let stiffness = (k * area / extent).max(1e-300);
+    ForceControl {
+        patch: pi,
+        target: Vector::zeros(),
+        displacement: Vector::zeros(),
+        force: Vector::zeros(),
+        previous: None,
+        stiffness: Tensor::identity() * stiffness,
+        max_step: 0.25 * extent,
+        force_floor: 1e-9 * k * area,
+    }
 }
 
 /// The constitutive law of a body and its formulation: Hooke's law on the

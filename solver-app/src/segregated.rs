@@ -11,6 +11,12 @@ use fv_mesh::Vector;
 /// displacement norm (see [`SegregatedSolver::outer_iteration`]).
 const RESIDUAL_TOTAL_FRACTION: f64 = 1e-3;
 
+/// A force-controlled patch corrects its displacement (Algorithm 1) when
+/// the relative residual is below this multiple of the tolerance: the patch
+/// force is then settled to about the same fraction, enough for the secant
+/// step, and the loop need not converge fully between corrections.
+const FORCE_CORRECTION_RESIDUAL: f64 = 100.0;
+
 /// Diagonal added to a body held only by implicit contact, relative to its
 /// internal-face diagonal. It must stay far below the contact springs: at
 /// 1e-3 it outweighed the tangential springs of parallel-cylinders and the
@@ -519,6 +525,7 @@ impl SegregatedSolver {
     ) -> Result<IncrementInfo, SolveError> {
         self.begin_increment(bodies);
         let mut info = IncrementInfo::default();
+        let has_force_control = bodies.iter().any(|b| !b.force_controls.is_empty());
         for outer in 1..=self.max_outer {
             let (residual, linear) =
                 self.outer_iteration(bodies, contacts)
@@ -530,6 +537,20 @@ impl SegregatedSolver {
             info.outer_iterations = outer;
             info.residual = residual;
             on_iteration(outer, residual);
+            // Algorithm 1: force-controlled patches correct their
+            // displacement (secant) once the loop has settled for the
+            // current one, until the patch force is reached
+            if has_force_control && residual < FORCE_CORRECTION_RESIDUAL * self.tolerance {
+                self.update_fields(bodies)?;
+                let solved = self.solved_components();
+                let mut reached = true;
+                for b in bodies.iter_mut().filter(|b| !b.rigid) {
+                    reached &= b.correct_force_controls(solved);
+                }
+                if !reached || residual >= self.tolerance {
+                    continue;
+                }
+            }
             if residual < self.tolerance {
                 info.converged = true;
                 break;

@@ -7,8 +7,8 @@ use validation::run_toml_with_history;
 /// are half a period apart.
 #[test]
 fn axially_vibrating_bar_has_the_analytical_period() {
-    let (l, e, rho, t_load) = (1.0, 1.0, 1.0, 1e-3);
-    let period = 4.0 * l / (e / rho as f64).sqrt();
+    let (l, e, rho, t_load): (f64, f64, f64, f64) = (1.0, 1.0, 1.0, 1e-3);
+    let period = 4.0 * l / (e / rho).sqrt();
     // 100 steps per period, three periods
     let steps = 300;
     let case = format!(

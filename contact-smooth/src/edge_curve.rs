@@ -124,10 +124,17 @@ pub fn curvature_parameter(
     let v = 0.5 * (u0 + u1);
     let w = 0.5 * (u0 - u1);
     let (vv, ww) = (v.norm_squared(), w.norm_squared());
-    // angle between the normals, accurate at both ends of [0, π]
-    let theta = 2.0 * ww.sqrt().atan2(vv.sqrt());
     let tol = params.parallel_angle;
-    let s = parallel_ramp(theta, tol) * parallel_ramp(std::f64::consts::PI - theta, tol);
+    // tan(θ/2) = |w|/|v|: the angle θ between the normals is needed only
+    // when it is within 2 θ_tol of 0 or π
+    let t2 = tol.tan().powi(2);
+    let s = if ww >= vv * t2 && vv >= ww * t2 {
+        1.0
+    } else {
+        // accurate at both ends of [0, π]
+        let theta = 2.0 * ww.sqrt().atan2(vv.sqrt());
+        parallel_ramp(theta, tol) * parallel_ramp(std::f64::consts::PI - theta, tol)
+    };
     if s == 0.0 {
         return Vector::zeros();
     }

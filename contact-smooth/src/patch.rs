@@ -115,6 +115,18 @@ impl PatchDomain {
         }
     }
 
+    /// Bit `k` set: `(η, ζ)` lies beyond side `k` of [`PatchDomain::edges`]
+    /// (0 inside the domain).
+    pub fn violated_sides(self, eta: Real, zeta: Real) -> u8 {
+        let bit = |c: bool, k: u8| if c { 1u8 << k } else { 0 };
+        match self {
+            PatchDomain::Triangle => bit(zeta < 0.0, 0) | bit(eta > 1.0, 1) | bit(zeta > eta, 2),
+            PatchDomain::Square => {
+                bit(zeta < 0.0, 0) | bit(eta > 1.0, 1) | bit(zeta > 1.0, 2) | bit(eta < 0.0, 3)
+            }
+        }
+    }
+
     /// The centroid of the domain: `(2/3, 1/3)` or `(1/2, 1/2)`.
     pub fn centre(self) -> (Real, Real) {
         match self {
@@ -194,6 +206,10 @@ mod tests {
         let s = PatchDomain::Square;
         assert!(s.contains(0.0, 1.0, 0.0));
         assert_eq!(s.clamp(-1.0, 2.0), (0.0, 1.0));
+        assert_eq!(t.violated_sides(0.5, 0.25), 0);
+        assert_eq!(t.violated_sides(1.5, -0.1), 0b011);
+        assert_eq!(t.violated_sides(0.2, 0.4), 0b100);
+        assert_eq!(s.violated_sides(-0.1, 1.2), 0b1100);
         for d in [t, s] {
             let (e, z) = d.centre();
             assert!(d.contains(e, z, 0.0));

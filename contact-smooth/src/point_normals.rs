@@ -7,6 +7,14 @@
 //! sides `eᵢ`, `eᵢ₊₁` of face `i` leaving the point and the angle `αᵢ`
 //! between them (Fig. 4.39).
 //!
+//! Default (not the thesis's): Max's weighting `sin αᵢ / (|eᵢ||eᵢ₊₁|)` of
+//! the *corner* normals `eᵢ × eᵢ₊₁ / |eᵢ × eᵢ₊₁|`, exact on a sphere for any
+//! closed fan of triangles or quadrilaterals; the thesis's equal weights of
+//! face normals are [`PointNormalParams::thesis`]. Measured on spheres
+//! meshed irregularly, equal weights give first-order normals and a
+//! second-order Nagata surface, the default fourth order
+//! (`tests/accuracy.rs`).
+//!
 //! Then two corrections (Fig. 4.40):
 //!
 //! * **Flat/curved transition** ([`TransitionCorrection`]): a point on the
@@ -96,19 +104,19 @@ impl NormalWeighting {
     /// ωᵢ for the corner with sides `e1`, `e2` leaving the point; 0 for a
     /// degenerate corner (zero side, non-finite value).
     pub fn weight(self, e1: &Vector, e2: &Vector) -> Real {
-        let (l1, l2) = (e1.norm(), e2.norm());
-        let cross = e1.cross(e2).norm();
-        let alpha = cross.atan2(e1.dot(e2));
+        let angle = || e1.cross(e2).norm().atan2(e1.dot(e2));
         let w = match self {
             NormalWeighting::Equal => 1.0,
-            NormalWeighting::Angle => alpha,
-            NormalWeighting::Area => cross,
-            NormalWeighting::EdgeLengthReciprocal => 1.0 / (l1 * l2),
+            NormalWeighting::Angle => angle(),
+            NormalWeighting::Area => e1.cross(e2).norm(),
+            NormalWeighting::EdgeLengthReciprocal => 1.0 / (e1.norm() * e2.norm()),
             // sin α = |e₁ × e₂| / (|e₁||e₂|)
-            NormalWeighting::AngleEdgeLengthReciprocal => cross / (l1 * l2).powi(2),
+            NormalWeighting::AngleEdgeLengthReciprocal => {
+                e1.cross(e2).norm() / (e1.norm_squared() * e2.norm_squared())
+            }
             NormalWeighting::AngleCircumcircle => {
-                let sin = cross / (l1 * l2);
-                alpha * (sin / (e2 - e1).norm()).powi(2)
+                let sin = e1.cross(e2).norm() / (e1.norm() * e2.norm());
+                angle() * (sin / (e2 - e1).norm()).powi(2)
             }
         };
         if w.is_finite() && w > 0.0 {

@@ -208,7 +208,12 @@ pub fn project_onto_patch<P: NagataPatch + ?Sized>(
             });
         }
     }
-    let (eta, zeta, x) = closest_on_boundary(patch, xs)?;
+    // the sides the iterate has crossed (all of them if it has not)
+    let sides = match domain.violated_sides(eta, zeta) {
+        0 => u8::MAX,
+        m => m,
+    };
+    let (eta, zeta, x) = closest_on_boundary(patch, xs, sides)?;
     let normal = patch.normal(eta, zeta).or_else(|| {
         // a collapsed corner: the normal just inside the domain
         let (ce, cz) = domain.centre();
@@ -228,52 +233,57 @@ pub fn project_onto_patch<P: NagataPatch + ?Sized>(
     })
 }
 
-/// Closest point of the patch boundary to `xs`: `(η, ζ, x)`.
+/// Closest point to `xs` on the sides of the patch boundary selected by
+/// the bit mask `sides`: `(η, ζ, x)`.
 fn closest_on_boundary<P: NagataPatch + ?Sized>(
     patch: &P,
     xs: &Vector,
+    sides: u8,
 ) -> Option<(Real, Real, Vector)> {
     let mut best: Option<(Real, Real, Vector, Real)> = None;
-    for side in patch.domain().edges() {
-        let (e, z, x) = closest_on_side(patch, xs, side);
+    for (k, side) in patch.domain().edges().iter().enumerate() {
+        if sides & (1 << k) == 0 {
+            continue;
+        }
+        let (t, x) = closest_on_side(patch, xs, side);
         let d2 = (x - xs).norm_squared();
         if d2.is_finite() && best.is_none_or(|b| d2 < b.3) {
+            let e = side.start[0] + t * side.direction[0];
+            let z = side.start[1] + t * side.direction[1];
             best = Some((e, z, x, d2));
         }
     }
     best.map(|(e, z, x, _)| (e, z, x))
 }
 
-/// Closest point of one side (an edge curve, eq. 4.76) to `xs`: the best
-/// of `t = 0, ½, 1`, refined by Newton on `φ(t) = |x(t) − x_s|²/2` within `[0, 1]`.
+/// Closest point of one side to `xs`: `(t, x(t))`. Along a side every
+/// patch is the quadratic `p₀ + p₁ t + p₂ t²` (the edge curve, eq. 4.76),
+/// taken from the derivatives at `t = 0`; Newton on `φ(t) = |x(t) − x_s|²/2`
+/// from the best of `t = 0, ½, 1`, kept within `[0, 1]` and never uphill.
 fn closest_on_side<P: NagataPatch + ?Sized>(
     patch: &P,
     xs: &Vector,
     side: &DomainEdge,
-) -> (Real, Real, Vector) {
-    let at = |t: Real| {
-        (
-            side.start[0] + t * side.direction[0],
-            side.start[1] + t * side.direction[1],
-        )
-    };
-    let dist2 = |t: Real| {
-        let (e, z) = at(t);
-        (patch.point(e, z) - xs).norm_squared()
-    };
-    let mut t = [0.0, 0.5, 1.0]
-        .into_iter()
-        .min_by(|a, b| dist2(*a).total_cmp(&dist2(*b)))
-        .unwrap_or(0.5);
+) -> (Real, Vector) {
     let [a, b] = side.direction;
-    for _ in 0..8 {
-        let (e, z) = at(t);
-        let d = patch.derivatives(e, z);
-        let xt = a * d.s1 + b * d.s2;
-        let xtt = (a * a) * d.x_ee + (2.0 * a * b) * d.x_ez + (b * b) * d.x_zz;
-        let r = d.x - xs;
-        let g1 = r.dot(&xt);
-        let g2 = xt.norm_squared() + r.dot(&xtt);
+    let d = patch.derivatives(side.start[0], side.start[1]);
+    let p0 = d.x - xs;
+    let p1 = a * d.s1 + b * d.s2;
+    let p2 = 0.5 * ((a * a) * d.x_ee + (2.0 * a * b) * d.x_ez + (b * b) * d.x_zz);
+    let r = |t: Real| p0 + p1 * t + p2 * (t * t);
+    let mut t: Real = 0.0;
+    let mut f = r(0.0).norm_squared();
+    for s in [0.5, 1.0] {
+        let fs = r(s).norm_squared();
+        if fs < f {
+            (t, f) = (s, fs);
+        }
+    }
+    for _ in 0..10 {
+        let rt = r(t);
+        let xt = p1 + p2 * (2.0 * t);
+        let g1 = rt.dot(&xt);
+        let g2 = xt.norm_squared() + 2.0 * rt.dot(&p2);
         let next = if g2 > 0.0 {
             (t - g1 / g2).clamp(0.0, 1.0)
         } else if g1 > 0.0 {
@@ -281,16 +291,17 @@ fn closest_on_side<P: NagataPatch + ?Sized>(
         } else {
             1.0
         };
-        let done = (next - t).abs() <= 1e-14;
-        if dist2(next) <= dist2(t) {
-            t = next;
+        let fn_ = r(next).norm_squared();
+        if !(fn_ <= f) {
+            break;
         }
+        let done = (next - t).abs() <= 1e-14;
+        (t, f) = (next, fn_);
         if done {
             break;
         }
     }
-    let (e, z) = at(t);
-    (e, z, patch.point(e, z))
+    (t, r(t) + xs)
 }
 
 #[cfg(test)]

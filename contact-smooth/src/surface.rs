@@ -122,6 +122,13 @@ pub struct SurfaceProjection {
     pub inside: bool,
 }
 
+impl SurfaceProjection {
+    /// `|x_s − foot|`.
+    pub fn distance(&self) -> Real {
+        self.signed_distance.abs()
+    }
+}
+
 /// A Nagata-smoothed surface.
 ///
 /// ```

@@ -41,6 +41,22 @@ fn max_normal_angle(s: &NagataSurface, exact: &dyn Fn(&Vector) -> Vector) -> Rea
     worst
 }
 
+/// Smallest distance from `xs` to 24 × 24 samples of each of the faces.
+fn sampled_distance(s: &NagataSurface, xs: &Vector, faces: &[usize]) -> Real {
+    let mut best = Real::INFINITY;
+    for &f in faces {
+        let (patch, square): (&dyn contact_smooth::NagataPatch, bool) = match s.patch(f) {
+            Some(PatchRef::Triangle(t)) => (t, false),
+            Some(PatchRef::Quad(q)) => (q, true),
+            _ => continue,
+        };
+        for (e, z) in samples(square, 24) {
+            best = best.min((patch.point(e, z) - xs).norm());
+        }
+    }
+    best
+}
+
 /// Candidate faces: the faces around the faces of the mesh point nearest to `xs`.
 fn local_candidates(s: &NagataSurface, xs: &Vector, out: &mut Vec<usize>) {
     let nearest = (0..s.n_points())
@@ -89,7 +105,7 @@ fn run(
         boundary_feet: 0,
     };
     let mut cand = Vec::new();
-    for _ in 0..n {
+    for k in 0..n {
         let (xs, foot, delta) = point(&mut rng);
         let p: SurfaceProjection = s.closest_projection(&xs, &all).unwrap().unwrap();
         assert!(p.converged, "{name}: not converged at {xs:?}");
@@ -129,6 +145,14 @@ fn run(
             (q.point - p.point).norm() < 1e-12,
             "{name}: local candidates differ"
         );
+        // and no sampled point of those patches is closer
+        if k % 10 == 0 {
+            let nearest = sampled_distance(s, &xs, &cand);
+            assert!(
+                p.distance() <= nearest + 1e-12,
+                "{name}: a closer point exists"
+            );
+        }
     }
     println!(
         "{name}: e_pos {e_pos:.3e}, θ_max {theta:.3e}; max gap error {:.3e}, max foot error {:.3e}, \
@@ -238,4 +262,38 @@ fn rigid_motion_moves_the_feet() {
     assert!((after.point - (rot * before.point + shift)).norm() < 1e-12);
     assert!((after.normal - rot * before.normal).norm() < 1e-12);
     assert!((after.signed_distance - before.signed_distance).abs() < 1e-12);
+}
+
+/// On the coarsest meshes (20 triangles, 24 quadrilaterals) the patch
+/// normals jump across edges and more feet land on patch boundaries: every
+/// foot is still the closest point among the candidates (no sampled point
+/// of any candidate patch is closer).
+#[test]
+fn coarse_mesh_feet_are_closest() {
+    for m in [geodesic_sphere(1.0, 1), cube_sphere(1.0, 2)] {
+        let s = NagataSurface::new(&m.points, &m.faces, &[], SmoothingOptions::default()).unwrap();
+        let all: Vec<usize> = (0..s.n_faces()).collect();
+        let mut rng = Lcg(77);
+        let mut boundary = 0;
+        for _ in 0..500 {
+            let xs = (0.8 + 0.4 * rng.next()) * rng.direction();
+            let p = s.closest_projection(&xs, &all).unwrap().unwrap();
+            assert!(p.iterations <= 10 && (p.normal.norm() - 1.0).abs() < 1e-14);
+            let nearest = sampled_distance(&s, &xs, &all);
+            assert!(
+                p.distance() <= nearest + 1e-12,
+                "{} > {nearest}",
+                p.distance()
+            );
+            if !p.inside {
+                boundary += 1;
+                // a boundary foot: the distance is measured to the foot itself
+                assert!(((xs - p.point).norm() - p.distance()).abs() < 1e-14);
+            }
+        }
+        println!(
+            "{} faces: {boundary}/500 feet on patch boundaries",
+            m.faces.len()
+        );
+    }
 }

@@ -6,11 +6,11 @@ use fv_mesh::{Real, Vector};
 /// triangles fanned from the vertex average, centre the area-weighted mean
 /// of their centroids (the vertex average if the area vanishes).
 ///
-/// An empty polygon gives zeros. The area vector follows the right-hand
-/// rule of the vertex order.
+/// An empty polygon, or one with an index out of range, gives zeros. The
+/// area vector follows the right-hand rule of the vertex order.
 pub fn polygon_centre_area(points: &[Vector], poly: &[usize]) -> (Vector, Vector) {
     let n = poly.len();
-    if n == 0 {
+    if n == 0 || poly.iter().any(|&p| p >= points.len()) {
         return (Vector::zeros(), Vector::zeros());
     }
     let est = poly.iter().map(|&p| points[p]).sum::<Vector>() / n as Real;
@@ -56,5 +56,6 @@ mod tests {
         let (_, a) = polygon_centre_area(&p, &[0, 2, 1]);
         assert!((a - Vector::new(0.0, 0.0, -1.0)).norm() < 1e-15);
         assert_eq!(polygon_centre_area(&p, &[]).1, Vector::zeros());
+        assert_eq!(polygon_centre_area(&p, &[0, 1, 7]).1, Vector::zeros());
     }
 }

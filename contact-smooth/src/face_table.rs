@@ -113,20 +113,21 @@ impl FaceTable {
         self.n_points
     }
 
-    /// The polygon of face `f` (after removal of repeated points).
-    ///
-    /// # Panics
-    /// If `f >= n_faces()`.
+    /// The polygon of face `f` (after removal of repeated points); empty if
+    /// `f` is out of range.
     pub fn face(&self, f: usize) -> &[usize] {
-        &self.points[self.offsets[f]..self.offsets[f + 1]]
+        match (self.offsets.get(f), self.offsets.get(f + 1)) {
+            (Some(&a), Some(&b)) => &self.points[a..b],
+            _ => &[],
+        }
     }
 
-    /// The corners at point `p`.
-    ///
-    /// # Panics
-    /// If `p >= n_points()`.
+    /// The corners at point `p`; empty if `p` is out of range.
     pub fn corners(&self, p: usize) -> &[Corner] {
-        &self.corners[self.corner_offsets[p]..self.corner_offsets[p + 1]]
+        match (self.corner_offsets.get(p), self.corner_offsets.get(p + 1)) {
+            (Some(&a), Some(&b)) => &self.corners[a..b],
+            _ => &[],
+        }
     }
 
     /// Largest number of corners at one point.
@@ -154,6 +155,7 @@ mod tests {
             &[Corner { face: 0, index: 2 }, Corner { face: 1, index: 0 }]
         );
         assert_eq!(t.max_valence(), 2);
+        assert!(t.face(3).is_empty() && t.corners(5).is_empty());
         assert!(FaceTable::new(3, &[vec![0, 1, 3]]).is_err());
         let csr = FaceTable::from_csr(5, &[0, 3, 7], &[0, 1, 2, 2, 1, 3, 4]).unwrap();
         assert_eq!(csr.face(1), &[2, 1, 3, 4]);

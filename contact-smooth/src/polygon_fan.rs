@@ -28,15 +28,20 @@ use crate::face_geometry::polygon_centre_area;
 use fv_mesh::{Real, Vector};
 
 /// `(x_c, n_c)` for the polygon `poly` with vertex normals `normals`;
-/// `None` if the polygon is empty or has no normal (vertex normals and
-/// area vector all vanish).
+/// `None` if the polygon is empty, refers to a point out of range of
+/// `points` or `normals`, or has no normal (vertex normals and area vector
+/// all vanish).
 pub fn fan_centre(
     points: &[Vector],
     normals: &[Vector],
     poly: &[usize],
     params: &EdgeCurveParams,
 ) -> Option<(Vector, Vector)> {
-    if poly.is_empty() {
+    if poly.is_empty()
+        || poly
+            .iter()
+            .any(|&p| p >= points.len() || p >= normals.len())
+    {
         return None;
     }
     let k = poly.len() as Real;

@@ -67,17 +67,23 @@ pub fn load_mesh(
             z1,
             cells,
             radial_grading,
-        } => generators::annulus_mesh(
-            *r_inner,
-            *r_outer,
-            *theta0,
-            *theta1,
-            *z0,
-            *z1,
-            *cells,
-            *radial_grading,
-        )
-        .map_err(|e| source.error(&key, e.to_string()))?,
+            translate,
+        } => {
+            let mut m = generators::annulus_mesh(
+                *r_inner,
+                *r_outer,
+                *theta0,
+                *theta1,
+                *z0,
+                *z1,
+                *cells,
+                *radial_grading,
+            )
+            .map_err(|e| source.error(&key, e.to_string()))?;
+            let shift = fv_mesh::Vector::from(*translate);
+            m.points.iter_mut().for_each(|p| *p += shift);
+            m
+        }
     };
     mesh.cell_zones.clear();
     Ok(mesh)

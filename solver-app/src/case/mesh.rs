@@ -40,8 +40,9 @@ pub enum MeshSpec {
         grading: [f64; 3],
     },
     /// `{ generator = "annulus", r_inner, r_outer, theta0 = 0, theta1 = 90, z0 = 0, z1,
-    /// cells, radial_grading = 1 }`: an annular sector about the z axis;
-    /// patches `inner outer start end zmin zmax`.
+    /// cells, radial_grading = 1, translate = [0, 0, 0] }`: an annular sector
+    /// about the z axis, then moved by `translate` (its centre); patches
+    /// `inner outer start end zmin zmax`.
     Annulus {
         /// Inner radius (> 0).
         r_inner: f64,
@@ -59,6 +60,8 @@ pub enum MeshSpec {
         cells: [usize; 3],
         /// Last/first radial cell size ratio (> 0).
         radial_grading: f64,
+        /// Shift of the generated mesh (the centre of the sector).
+        translate: [f64; 3],
     },
 }
 
@@ -167,6 +170,7 @@ fn generate_annulus(t: &Table<'_>) -> Res<MeshSpec> {
         "z1",
         "cells",
         "radial_grading",
+        "translate",
     ])?;
     let r_inner = t.need("r_inner", |n| n.positive())?;
     let r_outer = t.need("r_outer", |n| {
@@ -207,5 +211,6 @@ fn generate_annulus(t: &Table<'_>) -> Res<MeshSpec> {
         z1,
         cells: cells(t)?,
         radial_grading: t.opt("radial_grading", 1.0, |n| n.positive())?,
+        translate: t.opt("translate", [0.0; 3], |n| n.vec3())?,
     })
 }

@@ -23,7 +23,7 @@
 //! m_P = ρ_P Ω_P conserved) and the matrix diagonal m_P/Δt².
 use crate::stress_law::current_area_vector;
 use crate::{LeastSquaresGradient, PatchCondition, StressLaw};
-use fv_materials::{updated_lagrangian_stress, MaterialError};
+use fv_materials::updated_lagrangian_stress;
 use fv_mesh::{MeshGeometry, PolyMesh, Tensor, Vector};
 
 /// Knobs of the discretisation.
@@ -408,7 +408,14 @@ impl SolidMomentum {
     /// Cell gradient (least squares) and stress from the current fields:
     /// σ of the total gradient (small strain), or σ from the increment
     /// gradient and the committed state, and σ̂ = jσ·f⁻ᵀ (updated Lagrangian).
-    pub fn update_gradient_and_stress(&mut self, mesh: &PolyMesh) -> Result<(), MaterialError> {
+    ///
+    /// A cell that the current iterate inverts (det f ≤ 0) keeps the stress
+    /// and trial state of the previous iterate: an intermediate iterate of
+    /// the outer loop may overshoot, and only a converged state has to be
+    /// admissible. Returns the first such cell and its det f, if any (the
+    /// caller rejects a converged state that still has one).
+    pub fn update_gradient_and_stress(&mut self, mesh: &PolyMesh) -> Option<(usize, f64)> {
+        let mut inverted = None;
         match &mut self.law {
             StressLaw::Small(m) => {
                 self.gradient
@@ -420,14 +427,30 @@ impl SolidMomentum {
             StressLaw::UpdatedLagrangian { law, state } => {
                 self.gradient
                     .vector_gradient(mesh, &self.du, &self.du_b, &mut self.grad_u);
-                law.update_stress(&self.grad_u, state, &mut self.sigma)?;
-                for ((h, s), g) in self.sigma_hat.iter_mut().zip(&self.sigma).zip(&self.grad_u) {
+                for (i, ((g, sig), h)) in self
+                    .grad_u
+                    .iter()
+                    .zip(self.sigma.iter_mut())
+                    .zip(self.sigma_hat.iter_mut())
+                    .enumerate()
+                {
                     let f = Tensor::identity() + g.transpose();
-                    *h = updated_lagrangian_stress(s, &f).unwrap_or(*s);
+                    match law.update_point(&state.committed(i), g) {
+                        Some((s, trial)) => {
+                            *sig = s;
+                            state.set_trial(i, &trial);
+                            *h = updated_lagrangian_stress(&s, &f).unwrap_or(s);
+                        }
+                        None => {
+                            if inverted.is_none() {
+                                inverted = Some((i, f.determinant()));
+                            }
+                        }
+                    }
                 }
             }
         }
-        Ok(())
+        inverted
     }
 
     /// Gradient at boundary face f: the cell gradient with its normal part

@@ -502,15 +502,25 @@ impl SegregatedSolver {
 
     /// Refreshes boundary values, gradient, stress, residual and boundary
     /// forces from the current displacement (for output after convergence).
-    pub fn update_fields(&self, bodies: &mut [Body]) -> Result<(), SolveError> {
+    /// Returns a description of the first cell the current iterate inverts,
+    /// if any (its previous stress is kept; see
+    /// [`fv_discretise::SolidMomentum::update_gradient_and_stress`]).
+    pub fn update_fields(&self, bodies: &mut [Body]) -> Result<Option<String>, SolveError> {
+        let mut inverted = None;
         for b in bodies.iter_mut().filter(|b| !b.rigid) {
             let m = &mut b.momentum;
             m.update_boundary_values(&b.mesh, &b.geom);
-            m.update_gradient_and_stress(&b.mesh)
-                .map_err(|e| SolveError::Material(format!("body '{}': {e}", b.name)))?;
+            if let Some((cell, jacobian)) = m.update_gradient_and_stress(&b.mesh) {
+                inverted.get_or_insert_with(|| {
+                    format!(
+                        "body '{}': cell {cell}: relative Jacobian det f = {jacobian:.3e} is not positive (the increment inverts the cell; use more steps)",
+                        b.name
+                    )
+                });
+            }
             m.compute_residual(&b.mesh, &b.geom, &self.params);
         }
-        Ok(())
+        Ok(inverted)
     }
 
     /// Solves one load increment by outer iterations; on entry the bodies
@@ -556,7 +566,10 @@ impl SegregatedSolver {
                 break;
             }
         }
-        self.update_fields(bodies)?;
+        if let Some(msg) = self.update_fields(bodies)? {
+            // a converged state must be admissible
+            return Err(SolveError::Material(msg));
+        }
         if info.converged {
             contacts.commit_increment();
         }

@@ -291,7 +291,8 @@ impl SolidMomentum {
                     PatchCondition::Symmetry | PatchCondition::NormalDisplacement(_) => {
                         a * n[c] * n[c]
                     }
-                    PatchCondition::Wedge(r) => 0.5 * a * (1.0 - r[f - p.start][(c, c)]).abs(),
+                    // hoop stiffness: K|Γ|/δ_n · sin²θ = K|Γ| sin θ / r per face
+                    PatchCondition::Wedge(r) => a * (1.0 - r[f - p.start][(c, c)].powi(2)).max(0.0),
                     PatchCondition::Traction(_)
                     | PatchCondition::Pressure(_)
                     | PatchCondition::Empty => 0.0,
@@ -377,7 +378,16 @@ impl SolidMomentum {
                         extrapolated - n * n.dot(&extrapolated) + n * v[f - p.start]
                     }
                     PatchCondition::Empty => self.u[o],
-                    PatchCondition::Wedge(r) => r[f - p.start] * self.u[o],
+                    PatchCondition::Wedge(r) => {
+                        // the cell value at the face centre rotated back into the
+                        // cell's plane (Rᵀk_b), then rotated onto the face plane:
+                        // exact for linear fields, also for the prisms on the axis
+                        let r = r[f - p.start];
+                        // (of the increment under the updated Lagrangian form)
+                        base + r
+                            * ((self.u[o] - self.old(o))
+                                + gp.transpose() * (r.transpose() * self.kb[b]))
+                    }
                     PatchCondition::LinearisedContact(lc) => {
                         // (3.22–3.23) with the traction of eq. 4.52, solved for
                         // the new normal derivative (eq. 4.53):

@@ -135,6 +135,62 @@ pub fn patch_reaction(body: &Body, p: usize) -> Vector {
     }
 }
 
+/// The wedge of an axisymmetric model: (axis direction, opening angle in
+/// radians) from the `wedge` faces of the deformable bodies — the angle
+/// between the two wedge planes, whose outward normals are the most
+/// opposite pair. `None` without wedge faces.
+pub fn wedge_of(bodies: &[Body]) -> Option<(Vector, f64)> {
+    let mut normals = Vec::new();
+    for b in bodies.iter().filter(|b| !b.rigid) {
+        for (p, c) in b.mesh.patches.iter().zip(&b.momentum.conditions) {
+            if matches!(c, fv_discretise::PatchCondition::Wedge(_)) {
+                normals.extend(p.faces().map(|f| b.geom.face_normals[f]));
+            }
+        }
+    }
+    let &na = normals.first()?;
+    let nb = normals
+        .iter()
+        .copied()
+        .min_by(|a, b| a.dot(&na).total_cmp(&b.dot(&na)))?;
+    let axis = na.cross(&nb);
+    let angle = (-na.dot(&nb)).clamp(-1.0, 1.0).acos();
+    (axis.norm() > 1e-12 && angle > 0.0).then(|| (axis.normalize(), angle))
+}
+
+/// Log lines with the full-revolution forces of an axisymmetric (wedge)
+/// model: the forces of the modelled wedge (as in `history.csv` and
+/// `summary.json`) times 2π/wedge angle — the axial component of every
+/// reported patch reaction (the radial components cancel over the
+/// revolution) and every contact normal force. Empty for other models.
+pub fn full_revolution_lines(bodies: &[Body], contacts: &ContactSet) -> Vec<String> {
+    let Some((axis, angle)) = wedge_of(bodies) else {
+        return Vec::new();
+    };
+    let factor = std::f64::consts::TAU / angle;
+    let mut parts = Vec::new();
+    for (bi, p, name) in reported_patches(bodies) {
+        let f = patch_reaction(&bodies[bi], p);
+        parts.push(format!("{name} axial {:.6e}", factor * f.dot(&axis)));
+    }
+    for c in &contacts.interfaces {
+        parts.push(format!(
+            "{} normal force {:.6e}",
+            c.slave_name,
+            factor * c.stats.normal_force
+        ));
+    }
+    vec![format!(
+        "  axisymmetric wedge of {:.4}° about ({:.3}, {:.3}, {:.3}), full revolution (x {:.4}): {}",
+        angle.to_degrees(),
+        axis.x,
+        axis.y,
+        axis.z,
+        factor,
+        parts.join(", ")
+    )]
+}
+
 /// Data of `summary.json`.
 #[derive(Debug, Clone, Default)]
 pub struct Summary {

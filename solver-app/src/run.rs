@@ -209,6 +209,10 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
                 } else if opts.quiet || !opts.no_files {
                     log.info(&line);
                 }
+                // axisymmetric wedges: the full-revolution forces
+                for l in crate::results::full_revolution_lines(&bodies, &contacts) {
+                    log.write(&l);
+                }
                 let row = history_row(t, info.outer_iterations, info.residual, &bodies, &contacts);
                 if let Some(h) = &mut history {
                     h.append(&row).map_err(io_err)?;

@@ -4,6 +4,8 @@
 pub mod concentric_cylinders;
 pub mod flat_punch;
 pub mod hertz_cylinder;
+pub mod hertz_sphere;
+pub mod nafems_punch;
 
 use std::path::{Path, PathBuf};
 

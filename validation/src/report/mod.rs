@@ -9,6 +9,7 @@
 pub mod concentric_cylinders;
 pub mod flat_punch;
 pub mod hertz_cylinder;
+pub mod nafems_punch;
 pub mod plot;
 
 use std::fmt::Write as _;
@@ -22,6 +23,8 @@ pub fn sections() -> Vec<Box<dyn Section>> {
         Box::new(hertz_cylinder::HertzCylinderSection),
         Box::new(flat_punch::FlatPunchSection),
         Box::new(concentric_cylinders::ConcentricCylindersSection),
+        Box::new(nafems_punch::NafemsPunchSection),
+        Box::new(nafems_punch::NafemsPunchModifiedSection),
         // one line per benchmark section
     ]
 }

@@ -138,6 +138,9 @@ pub struct SolidMomentum {
     /// Normal derivative n·∇u on traction faces (eq. 3.22), per boundary
     /// face (of Δu under the updated Lagrangian form).
     pub snd_b: Vec<Vector>,
+    /// u, u_b and n·∇u at the start of the current attempt of an increment
+    /// (to redo it with a smaller step, [`Self::restore_start`]).
+    saved: (Vec<Vector>, Vec<Vector>, Vec<Vector>),
     /// Cell gradient of the displacement on the current mesh: of u under
     /// small strain, of the increment Δu under the updated Lagrangian form.
     pub grad_u: Vec<Tensor>,
@@ -187,6 +190,11 @@ impl SolidMomentum {
             du: vec![Vector::zeros(); ul_len(nc)],
             du_b: vec![Vector::zeros(); ul_len(nb)],
             snd_b: vec![Vector::zeros(); nb],
+            saved: (
+                vec![Vector::zeros(); nc],
+                vec![Vector::zeros(); nb],
+                vec![Vector::zeros(); nb],
+            ),
             grad_u: vec![Tensor::zeros(); nc],
             sigma: vec![Tensor::zeros(); nc],
             sigma_hat: vec![Tensor::zeros(); ul_len(nc)],
@@ -254,6 +262,32 @@ impl SolidMomentum {
         }
         if let Some(inertia) = &mut self.inertia {
             inertia.advance(&self.u);
+        }
+    }
+
+    /// Records the fields at the start of an attempt at an increment.
+    pub fn save_start(&mut self) {
+        self.saved.0.copy_from_slice(&self.u);
+        self.saved.1.copy_from_slice(&self.u_b);
+        self.saved.2.copy_from_slice(&self.snd_b);
+    }
+
+    /// Back to the fields of [`Self::save_start`], the trial material state
+    /// dropped: the increment is redone (with a smaller step).
+    pub fn restore_start(&mut self) {
+        self.u.copy_from_slice(&self.saved.0);
+        self.u_b.copy_from_slice(&self.saved.1);
+        self.snd_b.copy_from_slice(&self.saved.2);
+        if let StressLaw::UpdatedLagrangian { state, .. } = &mut self.law {
+            state.discard();
+        }
+        if self.law.is_updated_lagrangian() {
+            for ((d, u), o) in self.du.iter_mut().zip(&self.u).zip(&self.u_old) {
+                *d = u - o;
+            }
+            for ((d, u), o) in self.du_b.iter_mut().zip(&self.u_b).zip(&self.u_b_old) {
+                *d = u - o;
+            }
         }
     }
 

@@ -133,6 +133,8 @@ pub struct Body {
     point_du: Vec<Vector>,
     /// Force-controlled patches.
     pub force_controls: Vec<ForceControl>,
+    /// The force controls at the start of the current attempt.
+    force_controls_saved: Vec<ForceControl>,
 }
 
 impl Body {
@@ -174,6 +176,25 @@ impl Body {
             }
         }
         all
+    }
+
+    /// Records the state at the start of an attempt at an increment.
+    pub fn save_start(&mut self) {
+        if self.rigid {
+            return;
+        }
+        self.momentum.save_start();
+        self.force_controls_saved.clone_from(&self.force_controls);
+    }
+
+    /// Back to the state of [`Self::save_start`] (to redo the increment
+    /// with a smaller step).
+    pub fn restore_start(&mut self) {
+        if self.rigid {
+            return;
+        }
+        self.momentum.restore_start();
+        self.force_controls.clone_from(&self.force_controls_saved);
     }
 
     /// End of a converged (or accepted) increment: under the updated
@@ -437,6 +458,7 @@ fn build_body(
         rigid_motion: (Vector::zeros(), Tensor::identity(), Vector::zeros()),
         mesh_motion,
         point_du,
+        force_controls_saved: Vec::new(),
         force_controls,
     })
 }

@@ -9,7 +9,10 @@ use crate::field_output::FieldOutput;
 use crate::mesh_loading::load_mesh;
 use crate::model::{build_bodies, Body};
 use crate::results::{history_columns, history_row, write_summary, History, RunLog, Summary};
-use crate::segregated::SegregatedSolver;
+use crate::segregated::{IncrementInfo, SegregatedSolver};
+
+/// Largest number of times a failed increment is halved and redone.
+const MAX_CUTBACKS: usize = 4;
 
 /// Command-line options of `fvc run`.
 #[derive(Debug, Clone, Default)]
@@ -158,37 +161,109 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
         } else {
             dt * k as f64
         };
-        for b in bodies.iter_mut() {
-            b.refresh_conditions(t);
-        }
-        // time step of the temporal term; the matrix diagonal holds m/Δt²
-        let dt_k = t - t_prev;
-        let mut has_inertia = false;
-        for inertia in bodies
-            .iter_mut()
-            .filter_map(|b| b.momentum.inertia.as_mut())
-        {
-            inertia.set_time_step(dt_k);
-            has_inertia = true;
-        }
-        if has_inertia && k > 1 && dt_k != dt_prev {
-            if let Err(e) = solver.assemble_and_factorise(&bodies, &case.solver.linear) {
-                failure = Some(format!("increment {k}: {e}"));
-                break;
+        // the increment, in sub-steps when an attempt fails (cut-back)
+        let mut total = IncrementInfo::default();
+        let mut t0 = t_prev;
+        let mut h = t - t_prev;
+        let mut cuts = 0;
+        let result = loop {
+            let t1 = if t0 + h >= t - 1e-9 * (t - t_prev) {
+                t
+            } else {
+                t0 + h
+            };
+            for b in bodies.iter_mut() {
+                b.refresh_conditions(t1);
+                b.save_start();
             }
-        }
-        dt_prev = dt_k;
-        t_prev = t;
-        let result = solver.solve_increment(&mut bodies, &mut contacts, |outer, res| {
-            if trace_outer {
-                eprintln!("  outer {outer}: residual {res:.3e}");
+            // time step of the temporal term; the matrix diagonal holds m/Δt²
+            let mut dt_k = t1 - t0;
+            if (dt_k - dt_prev).abs() <= 1e-9 * dt_prev {
+                dt_k = dt_prev; // equal steps up to rounding: keep the factorisation
             }
-            if let Some(pb) = &bar {
-                if outer % 10 == 0 {
-                    pb.set_message(format!("outer {outer} residual {res:.2e}"));
+            let mut has_inertia = false;
+            for inertia in bodies
+                .iter_mut()
+                .filter_map(|b| b.momentum.inertia.as_mut())
+            {
+                inertia.set_time_step(dt_k);
+                has_inertia = true;
+            }
+            if has_inertia && dt_k != dt_prev {
+                if let Err(e) = solver.assemble_and_factorise(&bodies, &case.solver.linear) {
+                    break Err(e);
                 }
             }
-        });
+            dt_prev = dt_k;
+            let attempt = solver.solve_increment(&mut bodies, &mut contacts, |outer, res| {
+                if trace_outer {
+                    eprintln!("  outer {outer}: residual {res:.3e}");
+                }
+                if let Some(pb) = &bar {
+                    if outer % 10 == 0 {
+                        pb.set_message(format!("outer {outer} residual {res:.2e}"));
+                    }
+                }
+            });
+            let failed = match &attempt {
+                Ok(info) => !info.converged,
+                Err(e) => !matches!(e, crate::segregated::SolveError::Unconstrained { .. }),
+            };
+            if failed && cuts < MAX_CUTBACKS {
+                let why = match &attempt {
+                    Ok(info) => format!(
+                        "no convergence in {} outer iterations",
+                        info.outer_iterations
+                    ),
+                    Err(e) => e.to_string(),
+                };
+                if let Ok(info) = &attempt {
+                    total.outer_iterations += info.outer_iterations;
+                    total.linear_iterations += info.linear_iterations;
+                }
+                for b in bodies.iter_mut() {
+                    b.restore_start();
+                }
+                cuts += 1;
+                h *= 0.5;
+                log.warn(&format!(
+                    "increment {k}: step t = {t0:.6e} → {t1:.6e} failed ({why}); redone in steps of {h:.3e}"
+                ));
+                continue;
+            }
+            match attempt {
+                Ok(info) => {
+                    total.outer_iterations += info.outer_iterations;
+                    total.linear_iterations += info.linear_iterations;
+                    total.residual = info.residual;
+                    total.converged = info.converged;
+                    if t1 == t || !info.converged {
+                        break Ok(total);
+                    }
+                    // a converged sub-step: accept it and go on
+                    let mut moved = Ok(());
+                    for b in bodies.iter_mut() {
+                        if let Err(e) = b.end_increment() {
+                            moved = Err(e);
+                            break;
+                        }
+                    }
+                    if let Err(e) = moved {
+                        break Err(crate::segregated::SolveError::Material(e));
+                    }
+                    if reassemble_every_increment {
+                        contacts.end_increment(&bodies);
+                        if let Err(e) = solver.assemble_and_factorise(&bodies, &case.solver.linear)
+                        {
+                            break Err(e);
+                        }
+                    }
+                    t0 = t1;
+                }
+                Err(e) => break Err(e),
+            }
+        };
+        t_prev = t;
         match result {
             Ok(info) => {
                 summary.increments = k;

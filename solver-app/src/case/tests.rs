@@ -264,9 +264,16 @@ fn mesh_forms() {
             z0: 0.0,
             z1: 0.1,
             cells: [20, 60, 1],
-            radial_grading: 1.0
+            radial_grading: 1.0,
+            translate: [0.0; 3],
         }
     );
+    let MeshSpec::Annulus { translate, .. } = m(
+        r#"mesh = { generator = "annulus", r_inner = 1, r_outer = 2, z1 = 0.1, cells = [2, 6, 1], translate = [12, -3, 0] }"#,
+    ) else {
+        panic!("not an annulus")
+    };
+    assert_eq!(translate, [12.0, -3.0, 0.0]);
     let MeshSpec::Annulus {
         theta0,
         theta1,

@@ -53,25 +53,21 @@ pub enum ContactAlgorithmKind {
     SegmentToSegment,
     /// [`Pointwise`] (§4.3), `"pointwise"`.
     Pointwise,
+    /// [`Pointwise::nagata`]: slave points against the Nagata-smoothed
+    /// master (§4.6.1), `"pointwise-nagata"`.
+    PointwiseNagata,
+    /// [`SegmentToSegment::nagata`]: the segment gap integrated against the
+    /// Nagata-smoothed master (beyond the thesis), `"segment-to-segment-nagata"`.
+    SegmentToSegmentNagata,
 }
-
-/// Names of variants that exist in the thesis but not yet here.
-const NOT_YET: [(&str, &str); 2] = [
-    (
-        "pointwise-nagata",
-        "Nagata surface smoothing, §4.6, comes with contact-smooth",
-    ),
-    (
-        "segment-to-segment-nagata",
-        "Nagata surface smoothing, §4.6, comes with contact-smooth",
-    ),
-];
 
 impl ContactAlgorithmKind {
     /// Every available algorithm, in the order of [`ContactAlgorithmKind::valid_names`].
-    pub const ALL: [ContactAlgorithmKind; 2] = [
+    pub const ALL: [ContactAlgorithmKind; 4] = [
         ContactAlgorithmKind::SegmentToSegment,
         ContactAlgorithmKind::Pointwise,
+        ContactAlgorithmKind::PointwiseNagata,
+        ContactAlgorithmKind::SegmentToSegmentNagata,
     ];
 
     /// The case-file name.
@@ -79,7 +75,17 @@ impl ContactAlgorithmKind {
         match self {
             ContactAlgorithmKind::SegmentToSegment => "segment-to-segment",
             ContactAlgorithmKind::Pointwise => "pointwise",
+            ContactAlgorithmKind::PointwiseNagata => "pointwise-nagata",
+            ContactAlgorithmKind::SegmentToSegmentNagata => "segment-to-segment-nagata",
         }
+    }
+
+    /// Whether the master surface is Nagata-smoothed.
+    pub fn smoothed(self) -> bool {
+        matches!(
+            self,
+            ContactAlgorithmKind::PointwiseNagata | ContactAlgorithmKind::SegmentToSegmentNagata
+        )
     }
 
     /// The valid names, comma separated.
@@ -88,18 +94,11 @@ impl ContactAlgorithmKind {
     }
 
     /// Parses a case-file name. An unknown name is rejected with the list
-    /// of valid ones; the Nagata variants are known but "not available yet".
+    /// of valid ones.
     pub fn from_name(name: &str) -> Result<Self, ContactError> {
         let name = name.trim();
         if let Some(k) = Self::ALL.into_iter().find(|k| k.name() == name) {
             return Ok(k);
-        }
-        if let Some(&(_, reason)) = NOT_YET.iter().find(|(n, _)| *n == name) {
-            return Err(ContactError::NotAvailable {
-                name: name.to_string(),
-                reason,
-                valid: Self::valid_names(),
-            });
         }
         Err(ContactError::UnknownAlgorithm {
             name: name.to_string(),
@@ -112,6 +111,8 @@ impl ContactAlgorithmKind {
         match self {
             ContactAlgorithmKind::SegmentToSegment => Box::new(SegmentToSegment::new()),
             ContactAlgorithmKind::Pointwise => Box::new(Pointwise::new()),
+            ContactAlgorithmKind::PointwiseNagata => Box::new(Pointwise::nagata()),
+            ContactAlgorithmKind::SegmentToSegmentNagata => Box::new(SegmentToSegment::nagata()),
         }
     }
 }
@@ -183,7 +184,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn names_round_trip_unknown_and_not_yet() {
+    fn names_round_trip_and_unknown() {
         for k in ContactAlgorithmKind::ALL {
             assert_eq!(ContactAlgorithmKind::from_name(k.name()).unwrap(), k);
             assert_eq!(k.to_string().parse::<ContactAlgorithmKind>().unwrap(), k);
@@ -193,15 +194,21 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(
-            msg.contains("mortar") && msg.contains("segment-to-segment, pointwise"),
+            msg.contains("mortar")
+                && msg.contains(
+                    "segment-to-segment, pointwise, pointwise-nagata, segment-to-segment-nagata"
+                ),
             "{msg}"
         );
-        let e = ContactAlgorithmKind::from_name("pointwise-nagata").unwrap_err();
-        assert!(matches!(e, ContactError::NotAvailable { .. }));
-        let msg = e.to_string();
-        assert!(
-            msg.contains("not available yet") && msg.contains("pointwise-nagata"),
-            "{msg}"
-        );
+        // the Nagata variants are available now
+        for (name, smoothed) in [
+            ("pointwise-nagata", true),
+            ("segment-to-segment-nagata", true),
+            ("pointwise", false),
+        ] {
+            let k = ContactAlgorithmKind::from_name(name).unwrap();
+            assert_eq!(k.smoothed(), smoothed);
+            assert_eq!(k.build().kind().name(), name);
+        }
     }
 }

@@ -41,7 +41,8 @@ pub enum ContactError {
         /// The valid names, comma separated.
         valid: String,
     },
-    /// A known algorithm that is not implemented yet.
+    /// A known algorithm that is not implemented (no algorithm is in this
+    /// state at present; kept for variants to come).
     #[error("contact algorithm '{name}' is not available yet ({reason}); valid names: {valid}")]
     NotAvailable {
         /// The requested name.

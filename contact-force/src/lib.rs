@@ -1,6 +1,7 @@
 //! Contact forces between two boundary surfaces by the penalty method
 //! (thesis chapter 4: §4.1 penalty laws and explicit Neumann–Neumann
-//! coupling, §4.3 pointwise algorithm, §4.4 segment-to-segment algorithm).
+//! coupling, §4.3 pointwise algorithm, §4.4 segment-to-segment algorithm,
+//! §4.6 both against a Nagata-smoothed master surface from `contact-smooth`).
 //!
 //! # Use in the outer loop
 //!
@@ -43,6 +44,7 @@ mod occluded_volume;
 mod penalty;
 mod pointwise;
 mod segment_to_segment;
+mod smoothed_master;
 mod sutherland_hodgman;
 
 pub use auxiliary_plane::{AuxiliaryPlane, AREA_TOLERANCE, MIN_FACING_COSINE};

@@ -12,6 +12,7 @@ use crate::ggi::GgiScratch;
 use crate::increment_state::{face_mean, IncrementState};
 use crate::penalty::{normal_pressure, ContactLaw};
 use crate::segment_to_segment::valid_face;
+use crate::smoothed_master::SmoothedMaster;
 use crate::sutherland_hodgman::{clip_non_positive, signed_area, Point2};
 use crate::ContactError;
 use fv_mesh::{Real, Surface, Vector};
@@ -34,9 +35,27 @@ use fv_mesh::{Real, Surface, Vector};
 /// triangulation (centre value = mean of point gaps) where the linearly
 /// interpolated gap is ≤ 0; on the master it is GGI-transferred.
 ///
-/// Cost per call O(pairs · points² + slave points · candidates).
+/// With Nagata smoothing of the master ([`Pointwise::nagata`],
+/// `"pointwise-nagata"`, thesis §4.6.1) step 1 projects each slave point
+/// orthogonally onto the smoothed master (Newton–Raphson, eqs. 4.81–4.84,
+/// at most 10 updates) among the patches around the closest flat face,
+/// keeping the foot with the smallest gap; the gap is the signed distance
+/// along the smoothed normal. In step 2 the normal traction of a slave
+/// point acts along the smoothed master normal at its foot, so eq. 4.11
+/// reads `t_s = (1/n_p) Σ_p ε_n ⟨−g_p⟩ ν_p` (ν_p = n_bs for flat faces in
+/// contact); the face pressure stays `(1/n_p) Σ_p ε_n ⟨−g_p⟩`. Points
+/// farther out than twice the face's patch deviation bound (they cannot
+/// touch the smoothed surface), or over a face whose patch and neighbours'
+/// patches are all flat, keep their flat gap. A translated rigid master
+/// is smoothed once; a deformable one is refreshed in place every call.
+///
+/// Cost per call O(pairs · points² + slave points · candidates), plus one
+/// projection onto the ~9 patches around a face per slave point near
+/// contact with smoothing.
 #[derive(Debug, Clone, Default)]
 pub struct Pointwise {
+    smoothing: Option<SmoothedMaster>,
+    point_normal: Vec<Vector>,
     state: IncrementState,
     transpose: PairsTranspose,
     ggi_scratch: GgiScratch,
@@ -99,10 +118,32 @@ impl Pointwise {
         Self::default()
     }
 
-    /// Step 1: gap at every slave point (NO_GAP where there is none).
+    /// The same against the Nagata-smoothed master (`"pointwise-nagata"`).
+    pub fn nagata() -> Self {
+        Pointwise {
+            smoothing: Some(SmoothedMaster::default()),
+            ..Self::default()
+        }
+    }
+
+    /// How many times the master surface was smoothed (built or refreshed
+    /// in place) so far; 0 without smoothing. A translated rigid master is
+    /// smoothed once.
+    pub fn smoothing_refreshes(&self) -> usize {
+        self.smoothing.as_ref().map_or(0, SmoothedMaster::refreshes)
+    }
+
+    /// Step 1: gap at every slave point (NO_GAP where there is none), and
+    /// the master normal at its foot.
     fn point_gaps(&mut self, master: &Surface, slave: &Surface) {
+        let smooth = match self.smoothing.as_mut() {
+            Some(sm) => sm.sync(master),
+            None => false,
+        };
         self.point_gap.clear();
         self.point_gap.resize(slave.n_points(), NO_GAP);
+        self.point_normal.clear();
+        self.point_normal.resize(slave.n_points(), Vector::zeros());
         for p in 0..slave.n_points() {
             let x = slave.points[p];
             if !x.iter().all(|v| v.is_finite()) {
@@ -116,8 +157,8 @@ impl Pointwise {
             self.candidates.sort_unstable();
             self.candidates.dedup();
             let np = slave.point_normals[p];
-            // (distance², gap, on border)
-            let mut best: Option<(Real, Real, bool)> = None;
+            // (distance², gap, on border, face)
+            let mut best: Option<(Real, Real, bool, usize)> = None;
             for &m in &self.candidates {
                 let mu = m as usize;
                 if !valid_face(master, mu) {
@@ -134,15 +175,27 @@ impl Pointwise {
                 // ties (a point over a shared edge) go to the face containing the projection
                 let better = match best {
                     None => true,
-                    Some((bd, _, _)) => d2 < bd * (1.0 - 1e-12) || (d2 <= bd && side.is_none()),
+                    Some((bd, _, _, _)) => d2 < bd * (1.0 - 1e-12) || (d2 <= bd && side.is_none()),
                 };
                 if better {
-                    best = Some((d2, (x - q).dot(&nm), border));
+                    best = Some((d2, (x - q).dot(&nm), border, mu));
                 }
             }
-            if let Some((_, g, border)) = best {
-                if !border {
-                    self.point_gap[p] = g;
+            if let Some((_, g, border, m)) = best {
+                if border {
+                    continue;
+                }
+                self.point_gap[p] = g;
+                self.point_normal[p] = master.face_normals[m];
+                let Some(sm) = self.smoothing.as_ref().filter(|_| smooth) else {
+                    continue;
+                };
+                if sm.clear_of(m, g) || sm.flat_around(m) {
+                    continue;
+                }
+                if let Some(sg) = sm.gap_near(&x, m) {
+                    self.point_gap[p] = sg.gap;
+                    self.point_normal[p] = sg.normal;
                 }
             }
         }
@@ -232,6 +285,19 @@ impl ContactAlgorithm for Pointwise {
                 .map(|&q| normal_pressure(law.normal_penalty, self.point_gap[q as usize]))
                 .sum::<Real>()
                 * inv;
+            let t = if self.smoothing.is_some() {
+                // along the master normal at each foot (smoothed or flat)
+                fp.iter()
+                    .map(|&q| {
+                        let q = q as usize;
+                        self.point_normal[q]
+                            * normal_pressure(law.normal_penalty, self.point_gap[q])
+                    })
+                    .sum::<Vector>()
+                    * inv
+            } else {
+                -slave.face_normals[s] * p
+            };
             let (mut gsum, mut gn) = (0.0, 0usize);
             for &q in fp {
                 let g = self.point_gap[q as usize];
@@ -245,7 +311,7 @@ impl ContactAlgorithm for Pointwise {
             }
             if p > 0.0 {
                 out.slave.pressure[s] = p;
-                out.slave.normal_traction[s] = -slave.face_normals[s] * p;
+                out.slave.normal_traction[s] = t;
                 let beta = self.slave_fraction(slave, s);
                 out.slave.contact_fraction[s] = beta;
                 contact_area += beta * slave.face_mag[s];
@@ -354,6 +420,10 @@ impl ContactAlgorithm for Pointwise {
     }
 
     fn kind(&self) -> ContactAlgorithmKind {
-        ContactAlgorithmKind::Pointwise
+        if self.smoothing.is_some() {
+            ContactAlgorithmKind::PointwiseNagata
+        } else {
+            ContactAlgorithmKind::Pointwise
+        }
     }
 }

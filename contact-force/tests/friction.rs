@@ -27,8 +27,10 @@ fn law(history: SlipHistory) -> ContactLaw {
 fn surfaces(kind: ContactAlgorithmKind) -> (Surface, Surface) {
     let (small, big) = ([0.0, 1.0], [-0.1, 1.1]);
     let (xm, xs) = match kind {
-        ContactAlgorithmKind::SegmentToSegment => (small, big),
-        ContactAlgorithmKind::Pointwise => (big, small),
+        ContactAlgorithmKind::SegmentToSegment | ContactAlgorithmKind::SegmentToSegmentNagata => {
+            (small, big)
+        }
+        ContactAlgorithmKind::Pointwise | ContactAlgorithmKind::PointwiseNagata => (big, small),
     };
     (lower([4, 4], xm, xm, 0.0), upper([7, 5], xs, xs, -DELTA))
 }

@@ -1,0 +1,349 @@
+//! The Nagata-smoothed master surface shared by the smoothed algorithm
+//! variants (thesis §4.6.1, eqs. 4.76–4.84): built from the master
+//! [`Surface`] on the first call, kept in step with it on later calls, and
+//! queried for the gap of a point by orthogonal projection.
+//!
+//! # Keeping in step without re-smoothing a rigid master
+//!
+//! Every call compares the master's current points with the points the
+//! surface was smoothed at:
+//!
+//! * unchanged, or all moved by one translation (a rigid master pressed or
+//!   slid along, within 10⁻¹² of the surface's extent): the smoothed
+//!   surface is reused and the query points are shifted by the
+//!   translation — a translated rigid master is smoothed once per run;
+//! * otherwise (a deformable master, a rotating rigid one):
+//!   [`NagataSurface::update_points`] refreshes normals and patches in
+//!   place, without allocating.
+//!
+//! If the surface cannot be smoothed (non-finite points), the algorithms
+//! fall back to the flat faces for that call.
+use crate::auxiliary_plane::AuxiliaryPlane;
+use crate::sutherland_hodgman::{Affine2, Point2};
+use contact_smooth::{curvature_parameter, NagataSurface, PatchKind, SmoothingOptions};
+use fv_mesh::{Real, Surface, Vector};
+
+/// A point's gap to the smoothed master surface.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct SmoothedGap {
+    /// Signed distance along the smoothed normal, positive outside the master.
+    pub gap: Real,
+    /// Unit normal of the smoothed master surface at the foot.
+    pub normal: Vector,
+}
+
+/// Flat-gap band outside which the smoothed surface cannot be touched:
+/// a point whose flat gap exceeds `BAND_FACTOR ×` the face's deviation
+/// bound is not projected (see [`SmoothedMaster::deviation`]).
+const BAND_FACTOR: Real = 2.0;
+
+/// The smoothed master and what the algorithms need around it.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct SmoothedMaster {
+    options: SmoothingOptions,
+    surface: Option<NagataSurface>,
+    /// Current master points = smoothed points + shift.
+    shift: Vector,
+    /// Faces sharing a point with each face (CSR), including the face.
+    ring_offsets: Vec<usize>,
+    ring: Vec<usize>,
+    /// Per face: bound on the distance of its patch from its plane.
+    deviation: Vec<Real>,
+    /// Per face: whether the patches of the face and all around it are flat.
+    flat_around: Vec<bool>,
+    /// Times the surface was built or refreshed (not counting reuse).
+    refreshes: usize,
+    /// Whether the surface is in step with the master of this call.
+    active: bool,
+}
+
+impl SmoothedMaster {
+    /// Brings the smoothed surface in step with `master` (see the module
+    /// documentation). Returns whether smoothing is available for this call.
+    pub(crate) fn sync(&mut self, master: &Surface) -> bool {
+        self.active = false;
+        let same_topology = self
+            .surface
+            .as_ref()
+            .is_some_and(|s| s.n_points() == master.n_points() && s.n_faces() == master.n_faces());
+        if !same_topology {
+            self.surface = None;
+            let Ok(s) = NagataSurface::from_surface(master, &[], self.options) else {
+                return false;
+            };
+            self.ring_offsets.clear();
+            self.ring.clear();
+            self.ring_offsets.push(0);
+            let mut around = Vec::new();
+            for f in 0..s.n_faces() {
+                if s.faces_around_face(f, &mut around).is_ok() {
+                    self.ring.extend_from_slice(&around);
+                }
+                self.ring_offsets.push(self.ring.len());
+            }
+            self.surface = Some(s);
+            self.shift = Vector::zeros();
+            self.refreshes += 1;
+            self.update_deviation();
+            self.active = true;
+            return true;
+        }
+        let Some(s) = self.surface.as_mut() else {
+            return false;
+        };
+        if let Some(d) = uniform_translation(s.points(), &master.points) {
+            self.shift = d;
+            self.active = true;
+            return true;
+        }
+        if s.update_points(&master.points).is_err() {
+            return false;
+        }
+        self.shift = Vector::zeros();
+        self.refreshes += 1;
+        self.update_deviation();
+        self.active = true;
+        true
+    }
+
+    /// Whether the last [`SmoothedMaster::sync`] succeeded.
+    #[cfg(test)]
+    pub(crate) fn is_active(&self) -> bool {
+        self.active
+    }
+
+    /// Times the surface was smoothed (built or refreshed) so far.
+    pub(crate) fn refreshes(&self) -> usize {
+        self.refreshes
+    }
+
+    /// Bound on the distance between the patch of face `f` and the face's
+    /// plane (through its centre, along its normal): `¼ Σ |c|` over the
+    /// edge curvature parameters (each quadratic term of eqs. 4.78–4.79 is
+    /// a curvature parameter times a product of two barycentric-like
+    /// coordinates, at most ¼) plus the corners' distance from the plane
+    /// (warping); infinite for fans (their lifted centre is not bounded by
+    /// this) so they are always projected. Exactly 0 for a flat patch
+    /// (bound below 10⁻¹² of the longest side), where the smoothed gap is
+    /// the flat one.
+    pub(crate) fn deviation(&self, f: usize) -> Real {
+        self.deviation.get(f).copied().unwrap_or(Real::INFINITY)
+    }
+
+    /// Whether the patches of face `f` and of every face around it are
+    /// flat: the smoothed surface there is the faceted one.
+    pub(crate) fn flat_around(&self, f: usize) -> bool {
+        self.flat_around.get(f).copied().unwrap_or(false)
+    }
+
+    /// Whether a point with flat gap `flat_gap` to face `f` is too far out
+    /// to touch the smoothed surface.
+    pub(crate) fn clear_of(&self, f: usize, flat_gap: Real) -> bool {
+        flat_gap > BAND_FACTOR * self.deviation(f)
+    }
+
+    fn update_deviation(&mut self) {
+        let Some(s) = self.surface.as_ref() else {
+            return;
+        };
+        let (x, n) = (s.points(), s.point_normals());
+        let edge = s.options().edge;
+        self.deviation.clear();
+        for f in 0..s.n_faces() {
+            let poly = s.table().face(f);
+            let k = poly.len();
+            let bound = match s.kind(f) {
+                Some(PatchKind::Triangle) | Some(PatchKind::Quad) => {
+                    let nf = s.face_normals()[f];
+                    let centre = poly.iter().map(|&p| x[p]).sum::<Vector>() / k as Real;
+                    let (mut b, mut size) = (0.0, 0.0);
+                    for i in 0..k {
+                        let (p, q) = (poly[i], poly[(i + 1) % k]);
+                        size = Real::max(size, (x[q] - x[p]).norm());
+                        b += 0.25 * curvature_parameter(&(x[q] - x[p]), &n[p], &n[q], &edge).norm();
+                        b += (x[p] - centre).dot(&nf).abs();
+                    }
+                    // a flat patch (round-off aside): exactly 0
+                    if b <= 1e-12 * size {
+                        0.0
+                    } else {
+                        b
+                    }
+                }
+                Some(PatchKind::Degenerate) => 0.0,
+                _ => Real::INFINITY,
+            };
+            self.deviation.push(bound);
+        }
+        self.flat_around.clear();
+        for f in 0..s.n_faces() {
+            let ring = &self.ring[self.ring_offsets[f]..self.ring_offsets[f + 1]];
+            self.flat_around
+                .push(ring.iter().all(|&g| self.deviation[g] == 0.0));
+        }
+    }
+
+    /// Gap of `x` (current coordinates) by the closest projection onto the
+    /// patches of the faces around face `near` (thesis §4.6.1: the
+    /// neighbouring patches of the face found by detection, the foot with
+    /// the smallest gap). `None` when smoothing is off or every candidate
+    /// is degenerate.
+    pub(crate) fn gap_near(&self, x: &Vector, near: usize) -> Option<SmoothedGap> {
+        let s = self.surface.as_ref().filter(|_| self.active)?;
+        let ring = self
+            .ring
+            .get(*self.ring_offsets.get(near)?..*self.ring_offsets.get(near + 1)?)?;
+        let p = s.closest_projection(&(x - self.shift), ring).ok()??;
+        Some(SmoothedGap {
+            gap: p.signed_distance,
+            normal: p.normal,
+        })
+    }
+
+    /// Gap of `x` preferring the patch of face `f`: its orthogonal foot if
+    /// it lies inside the patch, else the closest among the faces around
+    /// `f` ([`SmoothedMaster::gap_near`]).
+    pub(crate) fn gap_on(&self, x: &Vector, f: usize) -> Option<SmoothedGap> {
+        let s = self.surface.as_ref().filter(|_| self.active)?;
+        let xr = x - self.shift;
+        if let Ok(Some(p)) = s.project_onto_face(f, &xr) {
+            if p.inside && p.converged {
+                return Some(SmoothedGap {
+                    gap: p.signed_distance,
+                    normal: p.normal,
+                });
+            }
+        }
+        self.gap_near(x, f)
+    }
+
+    /// Gap at the point of the auxiliary plane of master face `m` with
+    /// coordinates `q`: the slave point hit by the ray along the plane's
+    /// normal (flat gap `ray`, eq. 4.14) projected onto the smoothed
+    /// master; the flat gap and the plane's normal where no patch is usable.
+    pub(crate) fn gap_at(
+        &self,
+        plane: &AuxiliaryPlane,
+        ray: &Affine2,
+        m: usize,
+        q: &Point2,
+    ) -> SmoothedGap {
+        let g = ray.value(q);
+        let xs = plane.lift(q) + plane.normal * g;
+        self.gap_on(&xs, m).unwrap_or(SmoothedGap {
+            gap: g,
+            normal: plane.normal,
+        })
+    }
+}
+
+/// `Some(d)` if `now[i] = then[i] + d` for every point within 10⁻¹² of the
+/// extent of `then` (or of 1 for a point-sized surface).
+fn uniform_translation(then: &[Vector], now: &[Vector]) -> Option<Vector> {
+    if then.len() != now.len() {
+        return None;
+    }
+    let (Some(a0), Some(b0)) = (then.first(), now.first()) else {
+        return Some(Vector::zeros());
+    };
+    let d = b0 - a0;
+    let extent = then
+        .iter()
+        .fold(0.0, |e: Real, x| e.max((x - a0).amax()))
+        .max(Real::MIN_POSITIVE);
+    let tol = 1e-12 * extent;
+    // written so that a NaN anywhere fails
+    let small = |v: Vector| v.iter().all(|c| c.abs() <= tol);
+    (extent.is_finite() && then.iter().zip(now).all(|(a, b)| small(b - a - d))).then_some(d)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use fv_mesh::generators::annulus_mesh;
+
+    fn arc() -> Surface {
+        let m = annulus_mesh(0.5, 1.0, 0.2, 1.2, 0.0, 0.1, [1, 10, 1], 1.0).unwrap();
+        Surface::new(&m, m.patch_index("outer").unwrap()).unwrap()
+    }
+
+    #[test]
+    fn translation_reuses_rotation_refreshes() {
+        let mut s = arc();
+        let mut sm = SmoothedMaster::default();
+        assert!(sm.sync(&s));
+        assert_eq!(sm.refreshes(), 1);
+        // a point outside the unit cylinder, between two facets
+        let x = Vector::new(1.1 * 0.7f64.cos(), 1.1 * 0.7f64.sin(), 0.05);
+        let g0 = sm.gap_near(&x, 5).unwrap();
+        assert!((g0.gap - 0.1).abs() < 1e-4, "{}", g0.gap);
+        let d = Vector::new(0.3, -0.2, 0.1);
+        let moved: Vec<Vector> = s.points.iter().map(|p| p + d).collect();
+        s.update_points(&moved);
+        assert!(sm.sync(&s));
+        assert_eq!(sm.refreshes(), 1);
+        let g1 = sm.gap_near(&(x + d), 5).unwrap();
+        assert!((g1.gap - g0.gap).abs() < 1e-13);
+        assert!((g1.normal - g0.normal).norm() < 1e-13);
+        // a rotation about z: refreshed in place
+        let (c, si) = (0.1f64.cos(), 0.1f64.sin());
+        let rotated: Vec<Vector> = moved
+            .iter()
+            .map(|p| Vector::new(c * p.x - si * p.y, si * p.x + c * p.y, p.z))
+            .collect();
+        s.update_points(&rotated);
+        assert!(sm.sync(&s));
+        assert_eq!(sm.refreshes(), 2);
+        // non-finite points: smoothing off for this call, no panic
+        let mut bad = rotated.clone();
+        bad[0].x = Real::NAN;
+        s.update_points(&bad);
+        assert!(!sm.sync(&s) && !sm.is_active());
+        assert!(sm.gap_near(&x, 5).is_none());
+    }
+
+    #[test]
+    fn deviation_bounds_the_patch() {
+        let s = arc();
+        let mut sm = SmoothedMaster::default();
+        assert!(sm.sync(&s));
+        let ns = sm.surface.as_ref().unwrap();
+        for p in 0..ns.n_points() {
+            eprintln!(
+                "DBG p {p} x {:?} n {:?}",
+                ns.points()[p],
+                ns.point_normals()[p]
+            );
+        }
+        for f in 0..ns.n_faces() {
+            eprintln!(
+                "DBG f {f} {:?} kind {:?} dev {}",
+                ns.table().face(f),
+                ns.kind(f),
+                sm.deviation(f)
+            );
+        }
+        for f in 0..s.n_faces() {
+            let (c, n) = (s.face_centres[f], s.face_normals[f]);
+            let dev = sm.deviation(f);
+            // inside the arc: twice the sagitta h²/8R of its chord h = 0.1;
+            // the end faces' border point normals are their face normals,
+            // not symmetric about the chord, and the capped curvature
+            // parameter makes their bound (not their patch) large
+            if f > 0 && f + 1 < s.n_faces() {
+                assert!((dev - 2.0 * 0.01 / 8.0).abs() < 1e-5, "{dev}");
+            }
+            for i in 0..=10 {
+                for j in 0..=10 {
+                    let local = contact_smooth::LocalCoords {
+                        sub: 0,
+                        eta: i as Real / 10.0,
+                        zeta: j as Real / 10.0,
+                    };
+                    let p = ns.point_at(f, local).unwrap();
+                    assert!((p - c).dot(&n).abs() <= dev * (1.0 + 1e-12));
+                }
+            }
+        }
+    }
+}

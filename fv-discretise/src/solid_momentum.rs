@@ -278,8 +278,22 @@ impl SolidMomentum {
         self.u.copy_from_slice(&self.saved.0);
         self.u_b.copy_from_slice(&self.saved.1);
         self.snd_b.copy_from_slice(&self.saved.2);
-        if let StressLaw::UpdatedLagrangian { state, .. } = &mut self.law {
+        if let StressLaw::UpdatedLagrangian { law, state } = &mut self.law {
             state.discard();
+            // the failed attempt may have left non-finite fields behind: the
+            // stress of the committed state, the gradient of no increment
+            for (i, (s, h)) in self
+                .sigma
+                .iter_mut()
+                .zip(self.sigma_hat.iter_mut())
+                .enumerate()
+            {
+                if let Some((c, _)) = law.update_point(&state.committed(i), &Tensor::zeros()) {
+                    *s = c;
+                    *h = c;
+                }
+            }
+            self.grad_u.iter_mut().for_each(|g| *g = Tensor::zeros());
         }
         if self.law.is_updated_lagrangian() {
             for ((d, u), o) in self.du.iter_mut().zip(&self.u).zip(&self.u_old) {

@@ -84,6 +84,9 @@ pub struct ContactSide {
     /// few more (the springs only shape the path; the converged traction is
     /// the contact algorithm's).
     beta: Vec<f64>,
+    /// `applied` and `beta` at the start of the current attempt at an
+    /// increment (restored when it is redone with a smaller step).
+    saved: (Vec<Vector>, Vec<f64>),
 }
 
 /// GGI-weighted average over the opposite faces of `value(opposite face)`
@@ -329,6 +332,7 @@ impl ContactSet {
                     opposite_reference: vec![Vector::zeros(); surface.n_faces()],
                     opposite_now: vec![Vector::zeros(); surface.n_faces()],
                     beta: vec![0.0; surface.n_faces()],
+                    saved: (Vec::new(), Vec::new()),
                     surface,
                 })
             };
@@ -649,6 +653,28 @@ impl ContactSet {
             }
         }
         Ok(max_change)
+    }
+
+    /// Records the coupling state at the start of an attempt at an
+    /// increment.
+    pub fn save_start(&mut self) {
+        for ci in &mut self.interfaces {
+            for side in [&mut ci.master, &mut ci.slave] {
+                side.saved.0.clone_from(&side.applied);
+                side.saved.1.clone_from(&side.beta);
+            }
+        }
+    }
+
+    /// Back to the state of [`Self::save_start`]: a failed attempt (which
+    /// may have left non-finite tractions) is forgotten.
+    pub fn restore_start(&mut self) {
+        for ci in &mut self.interfaces {
+            for side in [&mut ci.master, &mut ci.slave] {
+                side.applied.clone_from(&side.saved.0);
+                side.beta.clone_from(&side.saved.1);
+            }
+        }
     }
 
     /// End of a converged increment: friction history.

@@ -135,6 +135,8 @@ pub struct Body {
     pub force_controls: Vec<ForceControl>,
     /// The force controls at the start of the current attempt.
     force_controls_saved: Vec<ForceControl>,
+    /// The patch conditions at the start of the current attempt.
+    conditions_saved: Vec<PatchCondition>,
 }
 
 impl Body {
@@ -185,6 +187,7 @@ impl Body {
         }
         self.momentum.save_start();
         self.force_controls_saved.clone_from(&self.force_controls);
+        self.conditions_saved.clone_from(&self.momentum.conditions);
     }
 
     /// Back to the state of [`Self::save_start`] (to redo the increment
@@ -195,6 +198,7 @@ impl Body {
         }
         self.momentum.restore_start();
         self.force_controls.clone_from(&self.force_controls_saved);
+        self.momentum.conditions.clone_from(&self.conditions_saved);
     }
 
     /// End of a converged (or accepted) increment: under the updated
@@ -459,6 +463,7 @@ fn build_body(
         mesh_motion,
         point_du,
         force_controls_saved: Vec::new(),
+        conditions_saved: Vec::new(),
         force_controls,
     })
 }

@@ -176,6 +176,7 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
                 b.refresh_conditions(t1);
                 b.save_start();
             }
+            contacts.save_start();
             // time step of the temporal term; the matrix diagonal holds m/Δt²
             let mut dt_k = t1 - t0;
             if (dt_k - dt_prev).abs() <= 1e-9 * dt_prev {
@@ -224,6 +225,7 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
                 for b in bodies.iter_mut() {
                     b.restore_start();
                 }
+                contacts.restore_start();
                 cuts += 1;
                 h *= 0.5;
                 log.warn(&format!(

@@ -140,6 +140,13 @@ impl ExplicitRelaxation {
     pub fn tangential_factor(&self) -> Real {
         self.tangential
     }
+
+    /// Sets α_t (clamped to (0, 1]), e.g. to damp a stick–slip cycle.
+    pub fn set_tangential_factor(&mut self, tangential: Real) {
+        if tangential > 0.0 {
+            self.tangential = tangential.min(1.0);
+        }
+    }
 }
 
 impl Coupling for ExplicitRelaxation {

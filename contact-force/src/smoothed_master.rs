@@ -47,6 +47,9 @@ pub(crate) struct SmoothedMaster {
     /// Faces sharing a point with each face (CSR), including the face.
     ring_offsets: Vec<usize>,
     ring: Vec<usize>,
+    /// The face and the faces sharing an edge with it (CSR).
+    edge_ring_offsets: Vec<usize>,
+    edge_ring: Vec<usize>,
     /// Per face: bound on the distance of its patch from its plane.
     deviation: Vec<Real>,
     /// Per face: whether the patches of the face and all around it are flat.
@@ -74,12 +77,19 @@ impl SmoothedMaster {
             self.ring_offsets.clear();
             self.ring.clear();
             self.ring_offsets.push(0);
+            self.edge_ring_offsets.clear();
+            self.edge_ring.clear();
+            self.edge_ring_offsets.push(0);
             let mut around = Vec::new();
             for f in 0..s.n_faces() {
                 if s.faces_around_face(f, &mut around).is_ok() {
                     self.ring.extend_from_slice(&around);
                 }
                 self.ring_offsets.push(self.ring.len());
+                self.edge_ring.push(f);
+                self.edge_ring
+                    .extend(master.neighbours_of_face(f).iter().map(|&g| g as usize));
+                self.edge_ring_offsets.push(self.edge_ring.len());
             }
             self.surface = Some(s);
             self.shift = Vector::zeros();
@@ -201,17 +211,23 @@ impl SmoothedMaster {
     }
 
     /// Gap of `x` preferring the patch of face `f`: its orthogonal foot if
-    /// it lies inside the patch, else the closest among the faces around
-    /// `f` ([`SmoothedMaster::gap_near`]).
+    /// it lies inside the patch, else the closest orthogonal foot on the
+    /// patches sharing an edge with it, else the closest among all the
+    /// faces around `f` ([`SmoothedMaster::gap_near`]).
     pub(crate) fn gap_on(&self, x: &Vector, f: usize) -> Option<SmoothedGap> {
         let s = self.surface.as_ref().filter(|_| self.active)?;
         let xr = x - self.shift;
-        if let Ok(Some(p)) = s.project_onto_face(f, &xr) {
-            if p.inside && p.converged {
-                return Some(SmoothedGap {
-                    gap: p.signed_distance,
-                    normal: p.normal,
-                });
+        let edge_ring = self
+            .edge_ring
+            .get(*self.edge_ring_offsets.get(f)?..*self.edge_ring_offsets.get(f + 1)?)?;
+        for candidates in [&edge_ring[..1], edge_ring] {
+            if let Ok(Some(p)) = s.closest_projection(&xr, candidates) {
+                if p.inside && p.converged {
+                    return Some(SmoothedGap {
+                        gap: p.signed_distance,
+                        normal: p.normal,
+                    });
+                }
             }
         }
         self.gap_near(x, f)

@@ -6,6 +6,7 @@ pub mod flat_punch;
 pub mod hertz_cylinder;
 pub mod hertz_sphere;
 pub mod nafems_punch;
+pub mod rigid_cylinder;
 
 use std::path::{Path, PathBuf};
 

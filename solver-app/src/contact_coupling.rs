@@ -22,6 +22,16 @@ use fv_mesh::{CellToPoint, Surface, Vector};
 /// deformable bodies overshoots, separates, and closes again forever.
 const BETA_MEMORY: f64 = 0.5;
 
+/// Contact updates within one increment after which the tangential
+/// relaxation starts to halve, and the updates between halvings: faces
+/// that switch between stick and slip from one outer iteration to the next
+/// can hold the loop in a cycle (seen as a period-3 cycle of two corner
+/// faces of a compressed rubber block); a smaller relaxation damps it. The
+/// converged traction does not depend on the relaxation.
+const STICK_SLIP_PATIENCE: usize = 150;
+/// Smallest fraction of the configured tangential relaxation.
+const STICK_SLIP_MIN_FRACTION: f64 = 1.0 / 32.0;
+
 /// Relaxation of the linearised normal traction t* of implicit coupling.
 /// With 1 the iteration can settle into a period-two cycle between two
 /// deformable bodies whose faceted curved surfaces touch in patches
@@ -181,6 +191,8 @@ pub struct ContactInterface {
     /// Whether the penalty was evaluated on the contacting faces of this increment.
     penalty_localised: bool,
     coupling: ExplicitRelaxation,
+    /// The configured tangential relaxation (before any damping).
+    tangential_relaxation: f64,
     /// Implicit coupling (thesis §4.5): linearised normal traction.
     pub implicit: bool,
     /// Tractions, pressures and gaps of the last call.
@@ -196,6 +208,8 @@ pub struct ContactSet {
     pub interfaces: Vec<ContactInterface>,
     /// Cell-to-point interpolation of every body (built for bodies in contact).
     cell_to_point: Vec<Option<CellToPoint>>,
+    /// Contact updates in the current increment (attempt).
+    updates_in_increment: usize,
 }
 
 fn side(
@@ -296,6 +310,7 @@ impl ContactSet {
         let mut set = ContactSet {
             interfaces: Vec::new(),
             cell_to_point: (0..bodies.len()).map(|_| None).collect(),
+            updates_in_increment: 0,
         };
         for (ci, c) in case.contacts.iter().enumerate() {
             let key = format!("contact[{ci}]");
@@ -380,6 +395,7 @@ impl ContactSet {
                 materials,
                 penalty_localised: false,
                 coupling,
+                tangential_relaxation,
                 implicit,
                 tractions: ContactTractions::new(),
                 stats: ContactStats::default(),
@@ -529,7 +545,17 @@ impl ContactSet {
     /// the traction condition of the contact patches.
     pub fn update(&mut self, bodies: &mut [Body]) -> Result<f64, String> {
         let mut max_change = 0.0f64;
+        self.updates_in_increment += 1;
+        // a lasting stick–slip cycle: damp the tangential relaxation
+        let damping = if self.updates_in_increment > STICK_SLIP_PATIENCE {
+            let halvings = (self.updates_in_increment - STICK_SLIP_PATIENCE) / 100 + 1;
+            0.5f64.powi(halvings as i32).max(STICK_SLIP_MIN_FRACTION)
+        } else {
+            1.0
+        };
         for ci in &mut self.interfaces {
+            ci.coupling
+                .set_tangential_factor(ci.tangential_relaxation * damping);
             Self::move_side(&mut ci.master, bodies, &self.cell_to_point);
             Self::move_side(&mut ci.slave, bodies, &self.cell_to_point);
             ci.detector
@@ -658,6 +684,7 @@ impl ContactSet {
     /// Records the coupling state at the start of an attempt at an
     /// increment.
     pub fn save_start(&mut self) {
+        self.updates_in_increment = 0;
         for ci in &mut self.interfaces {
             for side in [&mut ci.master, &mut ci.slave] {
                 side.saved.0.clone_from(&side.applied);
@@ -679,6 +706,7 @@ impl ContactSet {
 
     /// End of a converged increment: friction history.
     pub fn commit_increment(&mut self) {
+        self.updates_in_increment = 0;
         for ci in &mut self.interfaces {
             ci.algorithm
                 .commit_increment(&ci.master.surface, &ci.slave.surface);

@@ -251,7 +251,7 @@ strain = "large"
 end = 1.0
 steps = 10
 [solver]
-tolerance = 1e-7
+tolerance = 1e-6
 max_outer = 100000
 [[body]]
 name = "beam"

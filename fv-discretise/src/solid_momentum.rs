@@ -371,11 +371,7 @@ impl SolidMomentum {
     #[inline]
     fn face_traction(&self, o: usize, grad_b: &Tensor, n: &Vector) -> (Vector, f64) {
         let ul = self.law.is_updated_lagrangian();
-        let sig_hat = match self.law.point_stress(o, grad_b) {
-            Some((_, h)) => h,
-            None if ul => self.sigma_hat[o],
-            None => self.sigma[o],
-        };
+        let sig_hat = self.sigma_hat_at(o, grad_b);
         let ratio = if ul {
             current_area_vector(true, grad_b, n).norm()
         } else {
@@ -525,8 +521,14 @@ impl SolidMomentum {
     /// Surface-force tensor σ̂ at boundary face f (σ under small strain).
     #[inline]
     fn boundary_sigma_hat(&self, f: usize, b: usize, o: usize, n: &Vector) -> Tensor {
-        let g = self.boundary_gradient(f, b, o, n);
-        match self.law.point_stress(o, &g) {
+        self.sigma_hat_at(o, &self.boundary_gradient(f, b, o, n))
+    }
+
+    /// σ̂ at a point of cell `o` with gradient `grad`, or the cell's own σ̂
+    /// when the gradient inverts the point.
+    #[inline]
+    fn sigma_hat_at(&self, o: usize, grad: &Tensor) -> Tensor {
+        match self.law.point_stress(o, grad) {
             Some((_, h)) => h,
             None if self.law.is_updated_lagrangian() => self.sigma_hat[o],
             None => self.sigma[o],

@@ -41,6 +41,23 @@ pub fn grad_du_in_updated(grad0_du: &Tensor, f_old: &Tensor) -> Option<Tensor> {
     Some(f_old.try_inverse()?.transpose() * grad0_du)
 }
 
+/// One increment of a hyperelastic law whose state is only F: F ← f·F and
+/// σ = `cauchy`(F); `None` when f or F is not invertible.
+#[inline]
+pub(crate) fn hyperelastic_update(
+    committed: &PointState,
+    grad_du: &Tensor,
+    cauchy: impl Fn(&Tensor) -> Option<Tensor>,
+) -> Option<(Tensor, PointState)> {
+    let f_rel = relative_deformation_gradient(grad_du);
+    if !(f_rel.determinant() > 0.0) {
+        return None;
+    }
+    let f = f_rel * committed.f;
+    let sigma = cauchy(&f)?;
+    Some((sigma, PointState { f, ..*committed }))
+}
+
 /// State of one material point.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PointState {

@@ -1,6 +1,6 @@
 //! Compressible neo-Hookean hyperelasticity with the thesis's uncoupled
 //! volumetric term (eq. 2.25).
-use crate::large_strain::relative_deformation_gradient;
+use crate::large_strain::hyperelastic_update;
 use crate::{
     lame_from_young_poisson, LargeStrainMaterial, MaterialError, MaterialState, PointState, Tensor,
 };
@@ -101,13 +101,7 @@ impl LargeStrainMaterial for NeoHookean {
         committed: &PointState,
         grad_du: &Tensor,
     ) -> Option<(Tensor, PointState)> {
-        let f_rel = relative_deformation_gradient(grad_du);
-        if !(f_rel.determinant() > 0.0) {
-            return None;
-        }
-        let f = f_rel * committed.f;
-        let sigma = self.cauchy_stress(&f)?;
-        Some((sigma, PointState { f, ..*committed }))
+        hyperelastic_update(committed, grad_du, |f| self.cauchy_stress(f))
     }
 }
 

@@ -1,8 +1,8 @@
 //! Hooke's law in the finite-strain setting: the St Venant–Kirchhoff solid,
 //! the meaning of `model = "linear-elastic"` with `strain = "large"`.
 use crate::{
-    relative_deformation_gradient, LargeStrainMaterial, LinearElastic, MaterialError, PointState,
-    Tensor,
+    large_strain::hyperelastic_update, LargeStrainMaterial, LinearElastic, MaterialError,
+    PointState, Tensor,
 };
 
 /// S = λ tr(E) I + 2μ E with the Green–Lagrange strain E = ½(FᵀF − I) and
@@ -58,13 +58,7 @@ impl LargeStrainMaterial for StVenantKirchhoff {
         committed: &PointState,
         grad_du: &Tensor,
     ) -> Option<(Tensor, PointState)> {
-        let f_rel = relative_deformation_gradient(grad_du);
-        if !(f_rel.determinant() > 0.0) {
-            return None;
-        }
-        let f = f_rel * committed.f;
-        let sigma = self.cauchy_stress(&f)?;
-        Some((sigma, PointState { f, ..*committed }))
+        hyperelastic_update(committed, grad_du, |f| self.cauchy_stress(f))
     }
 }
 

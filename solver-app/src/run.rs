@@ -9,7 +9,7 @@ use crate::field_output::FieldOutput;
 use crate::mesh_loading::load_mesh;
 use crate::model::{build_bodies, Body};
 use crate::results::{history_columns, history_row, write_summary, History, RunLog, Summary};
-use crate::segregated::{IncrementInfo, SegregatedSolver};
+use crate::segregated::{IncrementInfo, SegregatedSolver, SolveError};
 
 /// Largest number of times a failed increment is halved and redone.
 const MAX_CUTBACKS: usize = 4;
@@ -59,6 +59,27 @@ pub fn set_up(case: &Case) -> Result<Vec<Body>, InputError> {
         meshes.push(load_mesh(&b.mesh, i, &case.source)?);
     }
     build_bodies(case, meshes)
+}
+
+/// An accepted increment or sub-step: the bodies end it (updated
+/// Lagrangian: mesh moved, state committed; dynamics: time levels shifted)
+/// and, when the meshes moved, the contact surfaces follow and the matrix
+/// is reassembled.
+fn accept_increment(
+    bodies: &mut [Body],
+    contacts: &mut ContactSet,
+    solver: &mut SegregatedSolver,
+    linear: &crate::case::LinearSettings,
+    meshes_move: bool,
+) -> Result<(), SolveError> {
+    for b in bodies.iter_mut() {
+        b.end_increment().map_err(SolveError::Material)?;
+    }
+    if meshes_move {
+        contacts.end_increment(bodies);
+        solver.assemble_and_factorise(bodies, linear)?;
+    }
+    Ok(())
 }
 
 /// Runs a validated case to the end (or to its first failure).
@@ -243,22 +264,14 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
                         break Ok(total);
                     }
                     // a converged sub-step: accept it and go on
-                    let mut moved = Ok(());
-                    for b in bodies.iter_mut() {
-                        if let Err(e) = b.end_increment() {
-                            moved = Err(e);
-                            break;
-                        }
-                    }
-                    if let Err(e) = moved {
-                        break Err(crate::segregated::SolveError::Material(e));
-                    }
-                    if reassemble_every_increment {
-                        contacts.end_increment(&bodies);
-                        if let Err(e) = solver.assemble_and_factorise(&bodies, &case.solver.linear)
-                        {
-                            break Err(e);
-                        }
+                    if let Err(e) = accept_increment(
+                        &mut bodies,
+                        &mut contacts,
+                        &mut solver,
+                        &case.solver.linear,
+                        reassemble_every_increment,
+                    ) {
+                        break Err(e);
                     }
                     t0 = t1;
                 }
@@ -314,25 +327,14 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
                 if accepted {
                     // updated Lagrangian: move the meshes, commit the state;
                     // dynamics: shift the time levels
-                    let mut moved = Ok(());
-                    for b in bodies.iter_mut() {
-                        if let Err(e) = b.end_increment() {
-                            moved = Err(e);
-                            break;
-                        }
-                    }
-                    match moved {
-                        Ok(()) => {
-                            if reassemble_every_increment {
-                                contacts.end_increment(&bodies);
-                                if let Err(e) =
-                                    solver.assemble_and_factorise(&bodies, &case.solver.linear)
-                                {
-                                    failure = Some(format!("after increment {k}: {e}"));
-                                }
-                            }
-                        }
-                        Err(e) => failure = Some(format!("after increment {k}: {e}")),
+                    if let Err(e) = accept_increment(
+                        &mut bodies,
+                        &mut contacts,
+                        &mut solver,
+                        &case.solver.linear,
+                        reassemble_every_increment,
+                    ) {
+                        failure = Some(format!("after increment {k}: {e}"));
                     }
                 }
                 if !info.converged {

@@ -2,9 +2,10 @@
 //! `../shared/benchmarks/README.md`): axisymmetric one-cell wedges from
 //! Gmsh, elastic punch on an elastic foundation, with either side master.
 use validation::benchmarks::nafems_punch::{
-    a25_radius, run, NafemsPunch, Variant, AXIS_DISPLACEMENT_FRICTION,
-    AXIS_DISPLACEMENT_FRICTIONLESS, MODIFIED_FILLET, MODIFIED_FLAT, MODIFIED_MODULUS,
-    MODIFIED_PRESSURE, PUNCH_RADIUS,
+    a25_radius, interpolate_uy, run, run_disc, NafemsPunch, Variant, AXIS_DISPLACEMENT_FRICTION,
+    AXIS_DISPLACEMENT_FRICTIONLESS, DISC_FE, FE_AXIS_DISPLACEMENT_FRICTION,
+    FE_AXIS_DISPLACEMENT_FRICTIONLESS, FE_AXIS_PRESSURE_FRICTION, FE_AXIS_PRESSURE_FRICTIONLESS,
+    MODIFIED_FILLET, MODIFIED_FLAT, MODIFIED_MODULUS, MODIFIED_PRESSURE, PUNCH_RADIUS,
 };
 
 fn report(r: &NafemsPunch) {
@@ -33,6 +34,20 @@ fn swapped_force_agrees(a: &NafemsPunch, b: &NafemsPunch) {
     assert!(d < 0.01, "{} vs {}", a.force, b.force);
 }
 
+/// The axis displacement within 1 % and the axis pressure within 3 % of the
+/// independent finite-element reference (the limits of the benchmark table).
+fn axis_against_fe(r: &NafemsPunch, displacement: f64, pressure: f64) {
+    let du = r.axis_displacement / displacement - 1.0;
+    let dp = r.axis_pressure / pressure - 1.0;
+    eprintln!(
+        "  vs the biquadratic FE reference: u_y(axis) {:+.2} % ({displacement}), p(axis) {:+.2} % ({pressure})",
+        100.0 * du,
+        100.0 * dp
+    );
+    assert!(du.abs() < 0.01, "{}", r.axis_displacement);
+    assert!(dp.abs() < 0.03, "{}", r.axis_pressure);
+}
+
 /// Applied load of the full revolution: 100 MPa on the punch top.
 fn applied(pressure: f64) -> f64 {
     pressure * std::f64::consts::PI * PUNCH_RADIUS * PUNCH_RADIUS
@@ -51,19 +66,17 @@ fn nafems_punch_with_friction_either_side_master() {
             "{}",
             r.force
         );
-        // measured −0.1326 mm: 3.1 % more than Code_Aster SSNA122 (−0.12858),
-        // 1.4 % more than the MSC.Marc quadratic elements (−0.1308); the
-        // 1 % of the benchmark table is not met (see the report)
+        // against the mesh-converged biquadratic FE solution of the same
+        // set-up (cases/nafems-punch/fe_reference.py): measured +0.6 % in
+        // u_y and +0.7 % in p on the axis
+        axis_against_fe(r, FE_AXIS_DISPLACEMENT_FRICTION, FE_AXIS_PRESSURE_FRICTION);
+        // the benchmark table's references are not converged solutions of
+        // this set-up: SSNA122 (an average of Marc and Abaqus) is 2.4 %
+        // below the FE reference, Marc's 70.5 MPa on the axis 20 % below;
+        // measured −0.1325 mm (+3.1 % vs SSNA122) and 89 MPa (see the report)
         let e = r.axis_displacement / AXIS_DISPLACEMENT_FRICTION - 1.0;
         eprintln!("  u_y(axis) vs SSNA122: {:+.2} %", 100.0 * e);
-        assert!(e.abs() < 0.04, "{}", r.axis_displacement);
-        // measured 89 MPa on the axis against Marc's 70.5 and Abaqus's 71.2
-        // (benchmark table: within 3 % of Marc — not met, see the report)
-        assert!(
-            r.axis_pressure > 80.0 && r.axis_pressure < 95.0,
-            "{}",
-            r.axis_pressure
-        );
+        assert!(e.abs() < 0.035, "{}", r.axis_displacement);
     }
     swapped_force_agrees(&a, &b);
 }
@@ -75,9 +88,16 @@ fn nafems_punch_frictionless_either_side_master() {
     for r in [&a, &b] {
         report(r);
         assert!(r.converged);
+        // measured +0.6 % in u_y and +0.5 % in p against the FE reference
+        axis_against_fe(
+            r,
+            FE_AXIS_DISPLACEMENT_FRICTIONLESS,
+            FE_AXIS_PRESSURE_FRICTIONLESS,
+        );
+        // SSNA122 is 2.4 % below the FE reference; measured +3.0 %
         let e = r.axis_displacement / AXIS_DISPLACEMENT_FRICTIONLESS - 1.0;
         eprintln!("  u_y(axis) vs SSNA122: {:+.2} %", 100.0 * e);
-        assert!(e.abs() < 0.04, "{}", r.axis_displacement);
+        assert!(e.abs() < 0.035, "{}", r.axis_displacement);
     }
     // friction lowers the axis displacement by 1.7 % in SSNA122
     let f = run(Variant::Friction, false);
@@ -86,6 +106,23 @@ fn nafems_punch_frictionless_either_side_master() {
     eprintln!("frictionless/friction axis displacement {ratio:.4} (SSNA122 {reference:.4})");
     assert!((ratio / reference - 1.0).abs() < 0.003);
     swapped_force_agrees(&a, &b);
+}
+
+#[test]
+fn foundation_under_a_disc_pressure_against_biquadratic_fe() {
+    // the wedges without contact, prisms on the axis included: measured
+    // +0.23 % on the axis, +0.19 to +0.22 % at r = 10–35 mm
+    let (faces, converged) = run_disc();
+    assert!(converged);
+    for (r, reference) in DISC_FE {
+        let u = interpolate_uy(&faces, r);
+        let e = u / reference - 1.0;
+        eprintln!(
+            "disc load: u_y(r = {r}) = {u:.6} mm, FE {reference}: {:+.3} %",
+            100.0 * e
+        );
+        assert!(e.abs() < 0.005, "r = {r}: {u}");
+    }
 }
 
 #[test]

@@ -13,7 +13,10 @@
 //   -setnumber g 1.15 foundation.geo -o ../nafems-punch-modified/foundation.msh
 // Patches: "contact" (y = 0), "bottom" (y = -200, fixed), "side" (r = 100),
 // "front"/"back" (the wedge planes). No patch on the axis. Volume "foundation".
-DefineConstant[ h = 1.0, rc = 45, g = 1.1, angle = 2.5 ];  // face size under the punch, its zone, growth
+// With -setnumber disc 1 the top is split at rc into "load" and "outer"
+// (elastic check of the wedges under a pressure on a disc, no contact):
+//   gmsh -3 -format msh41 -setnumber rc 40 -setnumber disc 1 foundation.geo -o foundation-disc.msh
+DefineConstant[ h = 1.0, rc = 45, g = 1.1, angle = 2.5, disc = 0 ];  // face size under the punch, its zone, growth
 rf = 100; hf = 200;
 nc = Round(rc / h);
 // faces growing by g from about h: n with h (g^n - 1)/(g - 1) = length
@@ -44,7 +47,12 @@ e2[] = Extrude {{0, 1, 0}, {0, 0, 0}, 2 * th} { Surface{2}; Layers{1}; Recombine
 e = 1e-6; zw = rf * Sin(th) * 1.01;
 Physical Surface("back") = {1, 2};
 Physical Surface("front") = {e1[0], e2[0]};
-Physical Surface("contact") = Surface In BoundingBox{-e, -e, -zw, rf + e, e, zw};
+If (disc == 0)
+  Physical Surface("contact") = Surface In BoundingBox{-e, -e, -zw, rf + e, e, zw};
+Else
+  Physical Surface("load") = Surface In BoundingBox{-e, -e, -zw, rc + e, e, zw};
+  Physical Surface("outer") = Surface In BoundingBox{rc - e, -e, -zw, rf + e, e, zw};
+EndIf
 Physical Surface("bottom") = Surface In BoundingBox{-e, -hf - e, -zw, rf + e, -hf + e, zw};
 Physical Surface("side") = Surface In BoundingBox{rf * Cos(th) - e, -hf - e, -zw, rf + e, e, zw};
 Physical Volume("foundation") = {e1[1], e2[1]};

@@ -12,6 +12,19 @@ use crate::run_toml;
 pub const AXIS_DISPLACEMENT_FRICTION: f64 = -0.12858;
 /// The same without friction, mm.
 pub const AXIS_DISPLACEMENT_FRICTIONLESS: f64 = -0.130734;
+/// Independent reference for the same set-up: axisymmetric biquadratic
+/// finite elements, mesh-converged (`cases/nafems-punch/fe_reference.py`,
+/// element size 0.25 mm at the contact; 0.5 mm differs by < 0.02 %):
+/// foundation axial displacement on the axis with μ = 0.1, mm. SSNA122's
+/// value (an average of Marc and Abaqus results) is 2.4 % smaller.
+pub const FE_AXIS_DISPLACEMENT_FRICTION: f64 = -0.131758;
+/// The same without friction, mm (SSNA122: 2.4 % smaller).
+pub const FE_AXIS_DISPLACEMENT_FRICTIONLESS: f64 = -0.133932;
+/// Contact pressure on the axis of the same finite-element reference with
+/// μ = 0.1, MPa (Marc 70.5, Abaqus 71.2 in `../shared/benchmarks`).
+pub const FE_AXIS_PRESSURE_FRICTION: f64 = 88.65;
+/// The same without friction, MPa.
+pub const FE_AXIS_PRESSURE_FRICTIONLESS: f64 = 87.22;
 /// Modified punch: flat radius a, fillet radius R (mm), contact modulus of
 /// two bodies with E = 70 GPa, ν = 0.3: E* = E / (2(1 − ν²)) (MPa).
 pub const MODIFIED_FLAT: f64 = 10.0;
@@ -75,17 +88,28 @@ pub struct NafemsPunch {
 
 /// Runs a case with the foundation as master or (`swapped`) as slave.
 pub fn run(variant: Variant, swapped: bool) -> NafemsPunch {
-    let (dir, mut text) = match variant {
+    let (dir, text) = match variant {
         Variant::Modified => read_case("nafems-punch-modified", "case.toml"),
         _ => read_case("nafems-punch", "case.toml"),
     };
+    run_text(variant, swapped, &dir, text)
+}
+
+/// [`run`] on the case text `text` whose relative mesh paths resolve
+/// against `dir` (mesh-convergence and parameter studies).
+pub fn run_text(
+    variant: Variant,
+    swapped: bool,
+    dir: &std::path::Path,
+    mut text: String,
+) -> NafemsPunch {
     if variant == Variant::Frictionless {
         text = text.replace("friction = 0.1", "friction = 0.0");
     }
     if swapped {
         text = swap_master_slave(&text, "foundation/contact", "punch/contact");
     }
-    let out = run_toml(&text, &dir);
+    let out = run_toml(&text, dir);
     let c = &out.contacts.interfaces[0];
     let (side, contact) = if swapped {
         (&c.slave, &c.tractions.slave)
@@ -207,5 +231,48 @@ impl NafemsPunch {
             .iter()
             .fold(0.0f64, |m, &(_, p, a)| m.max((p / a - 1.0).abs()));
         (e, pts)
+    }
+}
+
+/// `cases/nafems-punch/foundation-disc.toml`: the foundation alone under
+/// 156.25 MPa on r < 40 mm (no contact). The biquadratic FE reference
+/// (`fe_reference.py disc`, mesh-converged to < 0.003 %): (r, u_y) in mm.
+pub const DISC_FE: [(f64, f64); 5] = [
+    (0.0, -0.165254),
+    (10.0, -0.162780),
+    (20.0, -0.154943),
+    (30.0, -0.139988),
+    (35.0, -0.128134),
+];
+
+/// Runs `foundation-disc.toml`: r, u_y and u_r of the loaded faces (sorted
+/// by r) and whether the run converged.
+pub fn run_disc() -> (Vec<(f64, f64, f64)>, bool) {
+    let (dir, text) = read_case("nafems-punch", "foundation-disc.toml");
+    let out = run_toml(&text, &dir);
+    let body = &out.bodies[0];
+    let ni = body.mesh.n_internal_faces();
+    let mut faces = Vec::new();
+    if let Some(p) = body.mesh.patch_index("load") {
+        for f in body.mesh.patches[p].faces() {
+            let x = body.geom.face_centres[f];
+            let r = x.x.hypot(x.z);
+            let u = body.momentum.u_b[f - ni];
+            faces.push((r, u.y, (u.x * x.x + u.z * x.z) / r.max(f64::MIN_POSITIVE)));
+        }
+    }
+    faces.sort_by(|a, b| a.0.total_cmp(&b.0));
+    (faces, out.converged)
+}
+
+/// Linear interpolation of u_y between the face centres (the first face's
+/// value below its centre).
+pub fn interpolate_uy(faces: &[(f64, f64, f64)], r: f64) -> f64 {
+    let i = faces.partition_point(|f| f.0 < r);
+    match (i.checked_sub(1).and_then(|j| faces.get(j)), faces.get(i)) {
+        (Some(a), Some(b)) => a.1 + (b.1 - a.1) * (r - a.0) / (b.0 - a.0),
+        (None, Some(b)) => b.1,
+        (Some(a), None) => a.1,
+        (None, None) => f64::NAN,
     }
 }

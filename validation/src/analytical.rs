@@ -61,6 +61,15 @@ impl HertzLine {
         )
     }
 
+    /// Tangential traction of Cattaneo–Mindlin partial slip (A10) under the
+    /// friction coefficient `friction` with the stick half-width `c`:
+    /// q = μ p0/b (√(b² − x²) − √(c² − x²)), the second root only for |x| ≤ c.
+    pub fn tangential_traction(&self, x: f64, stick_half_width: f64, friction: f64) -> f64 {
+        let b = self.half_width;
+        let root = |a: f64| (a * a - x * x).max(0.0).sqrt();
+        friction * self.peak_pressure / b * (root(b) - root(stick_half_width.min(b)))
+    }
+
     /// Half-width of the stick zone under a tangential force Q < μF
     /// (Cattaneo–Mindlin, A11): c = b √(1 − Q/(μF)).
     pub fn stick_half_width(&self, tangential: f64, friction: f64, force: f64) -> f64 {
@@ -72,6 +81,16 @@ impl HertzLine {
 pub fn contact_modulus(a: Option<(f64, f64)>, b: Option<(f64, f64)>) -> f64 {
     let c = |m: Option<(f64, f64)>| m.map_or(0.0, |(e, nu): (f64, f64)| (1.0 - nu * nu) / e);
     1.0 / (c(a) + c(b))
+}
+
+/// Mean of `f` over the interval of width `w` centred on `x` (256-point
+/// midpoint rule): an analytical profile as a face of that width sees it.
+pub fn face_average(f: impl Fn(f64) -> f64, x: f64, w: f64) -> f64 {
+    const N: usize = 256;
+    (0..N)
+        .map(|k| f(x + w * ((k as f64 + 0.5) / N as f64 - 0.5)))
+        .sum::<f64>()
+        / N as f64
 }
 
 #[cfg(test)]

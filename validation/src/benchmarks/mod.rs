@@ -6,7 +6,9 @@ pub mod flat_punch;
 pub mod hertz_cylinder;
 pub mod hertz_sphere;
 pub mod nafems_punch;
+pub mod parallel_cylinders;
 pub mod rigid_cylinder;
+pub mod twisting_blocks;
 
 use std::path::{Path, PathBuf};
 

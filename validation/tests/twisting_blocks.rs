@@ -1,0 +1,55 @@
+//! twisting-blocks (thesis §4.4.1, `../shared/benchmarks/README.md`): the
+//! vertical reaction against the angle of a block turned 90° on another,
+//! the same within 1 % whichever side is master.
+use validation::benchmarks::twisting_blocks::run;
+
+#[test]
+fn vertical_reaction_does_not_depend_on_the_master() {
+    let a = run(false);
+    let b = run(true);
+    assert!(a.converged && b.converged);
+    assert_eq!(a.reaction.len(), 19);
+    let f0 = a.reaction[0].1;
+    let mut worst = 0.0f64;
+    for ((angle, fa), (_, fb)) in a.reaction.iter().zip(&b.reaction) {
+        let d = (fa - fb).abs() / fa;
+        worst = worst.max(d);
+        eprintln!(
+            "θ = {angle:4.1}°: F_z = {fa:.5} (lower master), {fb:.5} (upper master), {:+.3} %, F_z/F_z(0) = {:.4}",
+            100.0 * (fb / fa - 1.0),
+            fa / f0
+        );
+    }
+    for r in [&a, &b] {
+        eprintln!(
+            "upper master={}: {} outer iterations ({:.0} per increment), {:.1} s, {:.2} µs/cell/iter",
+            r.swapped,
+            r.cost.outer_iterations,
+            r.cost.outer_iterations as f64 / r.cost.increments.max(1) as f64,
+            r.cost.wall_seconds,
+            r.cost.us_per_cell_iteration()
+        );
+    }
+    assert!(worst < 0.01, "master/slave difference {worst}");
+    // push 0.01 on two unit cubes of E = 1000: F = E·0.005 = 5 for free
+    // lateral faces; the penalty's penetration takes about 1.5 % of it
+    assert!((f0 / 5.0 - 1.0).abs() < 0.03, "F_z(0) = {f0}");
+    // the contact area shrinks to the octagon at 45° and back at 90°, the
+    // load with it (less than the area: the overhanging corners still bear)
+    let at = |deg: f64| {
+        a.reaction
+            .iter()
+            .find(|(t, _)| (t - deg).abs() < 1e-9)
+            .map_or(f64::NAN, |r| r.1)
+    };
+    assert!(
+        at(45.0) < 0.96 * f0 && at(45.0) > 0.828 * f0,
+        "{}",
+        at(45.0)
+    );
+    assert!((at(90.0) / f0 - 1.0).abs() < 0.01, "{}", at(90.0));
+    for w in a.reaction[1..].windows(2) {
+        let rising = w[0].0 >= 45.0;
+        assert!((w[1].1 > w[0].1) == rising, "{:?}", w);
+    }
+}

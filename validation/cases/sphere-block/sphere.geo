@@ -12,8 +12,9 @@
 // bottom-right block, and the contact block under the central column whose
 // arc (0 ≤ θ ≤ tc from the lowest point) has nc uniform faces; radial lines
 // graded toward the arc so that the contact cells are nearly cubic. The
-// Hertz radius for the 0.01 m top displacement is about 0.08 m: the
-// contact radius spans about 6 faces of R tc / nc = 0.0125 m.
+// Hertz radius for the 0.01 m top displacement is about 0.10 m (deformable
+// or rigid block): the contact radius spans about 8 faces of
+// R tc / nc = 0.0125 m.
 //
 // Patches: "top" (z = R), "curved" (the spherical surface, contact),
 // "symmetry" (y = 0, both halves). Volume "sphere".

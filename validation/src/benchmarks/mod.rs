@@ -7,6 +7,7 @@ pub mod hertz_cylinder;
 pub mod hertz_sphere;
 pub mod nafems_punch;
 pub mod rigid_cylinder;
+pub mod sphere_block;
 
 use std::path::{Path, PathBuf};
 

@@ -93,6 +93,56 @@ pub fn face_average(f: impl Fn(f64) -> f64, x: f64, w: f64) -> f64 {
         / N as f64
 }
 
+/// Hertz contact of a sphere on a flat or of two spheres (point contact),
+/// thesis appendix A2, eqs. A13–A19.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HertzPoint {
+    /// Contact radius b = (3 F R / (4 E*))^(1/3) (A13).
+    pub radius: f64,
+    /// Peak pressure p0 = 3F / (2π b²) (A16).
+    pub peak_pressure: f64,
+}
+
+impl HertzPoint {
+    /// From the normal force `force`, the relative radius R (the sphere's
+    /// on a flat) and the contact modulus E* (A3, [`contact_modulus`]).
+    pub fn new(force: f64, radius: f64, contact_modulus: f64) -> Self {
+        let b = (3.0 * force * radius / (4.0 * contact_modulus)).cbrt();
+        HertzPoint {
+            radius: b,
+            peak_pressure: 3.0 * force / (2.0 * std::f64::consts::PI * b * b),
+        }
+    }
+
+    /// Contact pressure p(r) = p0 √(1 − r²/b²) inside the contact, 0 outside (A15).
+    pub fn pressure(&self, r: f64) -> f64 {
+        let x = r / self.radius;
+        if x.abs() < 1.0 {
+            self.peak_pressure * (1.0 - x * x).sqrt()
+        } else {
+            0.0
+        }
+    }
+
+    /// Stresses on the axis at depth `z` below the surface of a body with
+    /// Poisson's ratio `nu` (A19), ζ = z/b:
+    /// σ_rr = σ_θθ = −p0 [(1 + ν)(1 − ζ atan(1/ζ)) − 1/(2(1 + ζ²))],
+    /// σ_zz = −p0 / (1 + ζ²). Returns (σ_rr, σ_zz).
+    pub fn axis_stress(&self, z: f64, nu: f64) -> (f64, f64) {
+        let zeta = z.abs() / self.radius;
+        let zatan = if zeta > 0.0 {
+            zeta * (1.0 / zeta).atan()
+        } else {
+            0.0
+        };
+        let s = 1.0 + zeta * zeta;
+        (
+            -self.peak_pressure * ((1.0 + nu) * (1.0 - zatan) - 0.5 / s),
+            -self.peak_pressure / s,
+        )
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -116,6 +166,28 @@ mod tests {
         );
         let (sx, sz) = h.axis_stress(0.0);
         assert!((sx + h.peak_pressure).abs() < 1e-12 && (sz + h.peak_pressure).abs() < 1e-12);
+    }
+
+    #[test]
+    fn hertz_point_closed_forms() {
+        // F = 10, R = 1, E* = 100: b = (0.075)^(1/3), p0 = 15/(π b²)
+        let h = HertzPoint::new(10.0, 1.0, 100.0);
+        let b = 0.075f64.cbrt();
+        assert!((h.radius - b).abs() < 1e-12);
+        assert!((h.peak_pressure - 15.0 / (std::f64::consts::PI * b * b)).abs() < 1e-9);
+        // A14: F = (4/3) E* √R d^(3/2) with d = b²/R
+        let d = b * b;
+        assert!((4.0 / 3.0 * 100.0 * d.powf(1.5) - 10.0).abs() < 1e-9);
+        // surface: σ_rr = −p0 (1 + 2ν)/2, σ_zz = −p0
+        let (srr, szz) = h.axis_stress(0.0, 0.3);
+        assert!((srr + 0.8 * h.peak_pressure).abs() < 1e-12);
+        assert!((szz + h.peak_pressure).abs() < 1e-12);
+        // ζ = 1: σ_zz = −p0/2, σ_rr = −p0 [1.3 (1 − π/4) − 1/4]
+        let (srr, szz) = h.axis_stress(h.radius, 0.3);
+        assert!((szz + 0.5 * h.peak_pressure).abs() < 1e-12);
+        let e = 1.3 * (1.0 - std::f64::consts::FRAC_PI_4) - 0.25;
+        assert!((srr + e * h.peak_pressure).abs() < 1e-12);
+        assert_eq!(h.pressure(1.01 * h.radius), 0.0);
     }
 
     #[test]

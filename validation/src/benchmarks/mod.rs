@@ -8,6 +8,7 @@ pub mod hertz_sphere;
 pub mod nafems_punch;
 pub mod parallel_cylinders;
 pub mod rigid_cylinder;
+pub mod sphere_block;
 pub mod twisting_blocks;
 
 use std::path::{Path, PathBuf};

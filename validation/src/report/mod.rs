@@ -11,6 +11,7 @@ pub mod flat_punch;
 pub mod hertz_cylinder;
 pub mod nafems_punch;
 pub mod plot;
+pub mod sphere_block;
 
 use std::fmt::Write as _;
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -25,6 +26,7 @@ pub fn sections() -> Vec<Box<dyn Section>> {
         Box::new(concentric_cylinders::ConcentricCylindersSection),
         Box::new(nafems_punch::NafemsPunchSection),
         Box::new(nafems_punch::NafemsPunchModifiedSection),
+        Box::new(sphere_block::SphereBlockSection),
         // one line per benchmark section
     ]
 }

@@ -1,6 +1,7 @@
 //! The benchmarks of `../shared/benchmarks/README.md` as functions that run
 //! a case and return what it measured; the tests assert on these figures
 //! and the validation report plots them.
+pub mod block_in_half_tube;
 pub mod concentric_cylinders;
 pub mod flat_punch;
 pub mod hertz_cylinder;

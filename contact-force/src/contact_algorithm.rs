@@ -43,6 +43,10 @@ pub trait ContactAlgorithm: Send {
 
     /// Which algorithm this is.
     fn kind(&self) -> ContactAlgorithmKind;
+
+    /// Symmetry planes of the master's body, for the point normals of a
+    /// smoothed master (thesis Fig. 4.40); ignored without smoothing.
+    fn set_symmetry_planes(&mut self, _planes: &[contact_smooth::SymmetryPlane]) {}
 }
 
 /// The contact algorithms, by case-file name.

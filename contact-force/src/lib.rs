@@ -50,6 +50,8 @@ mod sutherland_hodgman;
 pub use auxiliary_plane::{AuxiliaryPlane, AREA_TOLERANCE, MIN_FACING_COSINE};
 pub use barycentric::{barycentric, locate_in_polygon, Located};
 pub use contact_algorithm::{ContactAlgorithm, ContactAlgorithmKind};
+/// Symmetry plane of a smoothed master ([`ContactAlgorithm::set_symmetry_planes`]).
+pub use contact_smooth::SymmetryPlane;
 pub use contact_tractions::{ContactStats, ContactTractions, SurfaceContact, NO_GAP};
 pub use coulomb_friction::{
     coulomb_return_mapping, face_friction, FaceFriction, FrictionState, SlipHistory,

@@ -419,6 +419,12 @@ impl ContactAlgorithm for Pointwise {
         self.state.reset();
     }
 
+    fn set_symmetry_planes(&mut self, planes: &[contact_smooth::SymmetryPlane]) {
+        if let Some(sm) = self.smoothing.as_mut() {
+            sm.set_symmetry_planes(planes);
+        }
+    }
+
     fn kind(&self) -> ContactAlgorithmKind {
         if self.smoothing.is_some() {
             ContactAlgorithmKind::PointwiseNagata

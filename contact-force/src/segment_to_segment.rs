@@ -566,6 +566,12 @@ impl ContactAlgorithm for SegmentToSegment {
         self.state.reset();
     }
 
+    fn set_symmetry_planes(&mut self, planes: &[contact_smooth::SymmetryPlane]) {
+        if let Some(sm) = self.smoothing.as_mut() {
+            sm.set_symmetry_planes(planes);
+        }
+    }
+
     fn kind(&self) -> ContactAlgorithmKind {
         if self.smoothing.is_some() {
             ContactAlgorithmKind::SegmentToSegmentNagata

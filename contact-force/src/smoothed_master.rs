@@ -20,7 +20,9 @@
 //! fall back to the flat faces for that call.
 use crate::auxiliary_plane::AuxiliaryPlane;
 use crate::sutherland_hodgman::{Affine2, Point2};
-use contact_smooth::{curvature_parameter, NagataSurface, PatchKind, SmoothingOptions};
+use contact_smooth::{
+    curvature_parameter, NagataSurface, PatchKind, SmoothingOptions, SymmetryPlane,
+};
 use fv_mesh::{Real, Surface, Vector};
 
 /// A point's gap to the smoothed master surface.
@@ -41,6 +43,9 @@ const BAND_FACTOR: Real = 2.0;
 #[derive(Debug, Clone, Default)]
 pub(crate) struct SmoothedMaster {
     options: SmoothingOptions,
+    /// Symmetry planes of the master's body: normals of points on them are
+    /// projected into them (thesis Fig. 4.40).
+    planes: Vec<SymmetryPlane>,
     surface: Option<NagataSurface>,
     /// Current master points = smoothed points + shift.
     shift: Vector,
@@ -61,6 +66,12 @@ pub(crate) struct SmoothedMaster {
 }
 
 impl SmoothedMaster {
+    /// Sets the symmetry planes; the surface is smoothed anew at the next call.
+    pub(crate) fn set_symmetry_planes(&mut self, planes: &[SymmetryPlane]) {
+        self.planes = planes.to_vec();
+        self.surface = None;
+    }
+
     /// Brings the smoothed surface in step with `master` (see the module
     /// documentation). Returns whether smoothing is available for this call.
     pub(crate) fn sync(&mut self, master: &Surface) -> bool {
@@ -71,7 +82,7 @@ impl SmoothedMaster {
             .is_some_and(|s| s.n_points() == master.n_points() && s.n_faces() == master.n_faces());
         if !same_topology {
             self.surface = None;
-            let Ok(s) = NagataSurface::from_surface(master, &[], self.options) else {
+            let Ok(s) = NagataSurface::from_surface(master, &self.planes, self.options) else {
                 return false;
             };
             self.ring_offsets.clear();
@@ -319,26 +330,40 @@ mod tests {
     }
 
     #[test]
+    fn symmetry_plane_normals_lie_in_the_plane() {
+        // an arc of the unit cylinder from θ = 0: its end is on the plane y = 0
+        let m = annulus_mesh(0.5, 1.0, 0.0, 1.0, 0.0, 0.1, [1, 10, 1], 1.0).unwrap();
+        let s = Surface::new(&m, m.patch_index("outer").unwrap()).unwrap();
+        let on_plane = |sm: &SmoothedMaster| -> Vec<Vector> {
+            let ns = sm.surface.as_ref().unwrap();
+            (0..ns.n_points())
+                .filter(|&p| ns.points()[p].y.abs() < 1e-12)
+                .map(|p| ns.point_normals()[p])
+                .collect()
+        };
+        let mut free = SmoothedMaster::default();
+        assert!(free.sync(&s));
+        // one facet's normal: tilted by half the facet angle, 0.05 rad
+        for n in on_plane(&free) {
+            assert!((n.y - 0.05f64.sin()).abs() < 1e-6, "{n:?}");
+        }
+        let mut sym = SmoothedMaster::default();
+        sym.set_symmetry_planes(&[SymmetryPlane::new(Vector::zeros(), Vector::y())]);
+        assert!(sym.sync(&s));
+        let normals = on_plane(&sym);
+        assert_eq!(normals.len(), 2);
+        for n in normals {
+            // the cylinder's own normal (1, 0, 0)
+            assert!((n - Vector::x()).norm() < 1e-12, "{n:?}");
+        }
+    }
+
+    #[test]
     fn deviation_bounds_the_patch() {
         let s = arc();
         let mut sm = SmoothedMaster::default();
         assert!(sm.sync(&s));
         let ns = sm.surface.as_ref().unwrap();
-        for p in 0..ns.n_points() {
-            eprintln!(
-                "DBG p {p} x {:?} n {:?}",
-                ns.points()[p],
-                ns.point_normals()[p]
-            );
-        }
-        for f in 0..ns.n_faces() {
-            eprintln!(
-                "DBG f {f} {:?} kind {:?} dev {}",
-                ns.table().face(f),
-                ns.kind(f),
-                sm.deviation(f)
-            );
-        }
         for f in 0..s.n_faces() {
             let (c, n) = (s.face_centres[f], s.face_normals[f]);
             let dev = sm.deviation(f);

@@ -12,7 +12,7 @@ use crate::model::Body;
 use contact_detect::{CandidatePairs, DetectParams, DetectionMethod, Detector};
 use contact_force::{
     ContactAlgorithm, ContactAlgorithmKind, ContactLaw, ContactStats, ContactTractions, Coupling,
-    ExplicitRelaxation, GgiWeights, PenaltyParams, SurfaceContact, SurfaceMaterial,
+    ExplicitRelaxation, GgiWeights, PenaltyParams, SurfaceContact, SurfaceMaterial, SymmetryPlane,
 };
 use fv_discretise::{LinearisedContact, PatchCondition};
 use fv_mesh::{CellToPoint, Surface, Vector};
@@ -196,6 +196,33 @@ fn transmitted_forces(
     };
     stats.master_force = total_m;
     stats.slave_force = total_s;
+}
+
+/// The planar `symmetry` patches of a body as planes (for the point normals
+/// of a smoothed master, thesis Fig. 4.40); a curved one is left out.
+fn symmetry_planes(body: &Body) -> Vec<SymmetryPlane> {
+    let g = &body.geom;
+    let mut planes = Vec::new();
+    for (p, cond) in body.mesh.patches.iter().zip(&body.momentum.conditions) {
+        let Some(first) = p.faces().next() else {
+            continue;
+        };
+        if !matches!(cond, PatchCondition::Symmetry) {
+            continue;
+        }
+        let (c0, n0) = (g.face_centres[first], g.face_normals[first]);
+        let extent = p
+            .faces()
+            .fold(0.0f64, |e, f| e.max((g.face_centres[f] - c0).norm()));
+        let planar = p.faces().all(|f| {
+            g.face_normals[f].dot(&n0) > 1.0 - 1e-9
+                && (g.face_centres[f] - c0).dot(&n0).abs() <= 1e-9 * extent.max(1.0)
+        });
+        if planar {
+            planes.push(SymmetryPlane::new(c0, n0));
+        }
+    }
+    planes
 }
 
 fn owner_u(b: &Body, side: &ContactSide, i: usize) -> Vector {
@@ -423,6 +450,8 @@ impl ContactSet {
                     set.cell_to_point[b] = Some(CellToPoint::new(&bodies[b].mesh, &bodies[b].geom));
                 }
             }
+            let mut algorithm = kind.build();
+            algorithm.set_symmetry_planes(&symmetry_planes(&bodies[mb]));
             set.interfaces.push(ContactInterface {
                 slave_name: format!("{}/{}", c.slave.0, c.slave.1),
                 master_name: format!("{}/{}", c.master.0, c.master.1),
@@ -430,7 +459,7 @@ impl ContactSet {
                 slave,
                 detector,
                 pairs: CandidatePairs::new(),
-                algorithm: kind.build(),
+                algorithm,
                 law,
                 params,
                 materials,

@@ -38,6 +38,7 @@ mod edge_curve;
 mod error;
 mod face_geometry;
 mod face_table;
+mod normal_fit;
 mod patch;
 mod point_normals;
 mod polygon_fan;
@@ -51,6 +52,7 @@ pub use edge_curve::{curvature_parameter, EdgeCurve, EdgeCurveParams};
 pub use error::SmoothError;
 pub use face_geometry::polygon_centre_area;
 pub use face_table::{Corner, FaceTable};
+pub use normal_fit::{FitWorkspace, NormalFit, MIN_FIRST_RING};
 pub use patch::{DomainEdge, NagataPatch, PatchDerivatives, PatchDomain};
 pub use point_normals::{
     NormalWeighting, PointNormalParams, PointNormals, SymmetryPlane, TransitionCorrection,

@@ -37,6 +37,7 @@
 //!   [`PointNormals::new`], within `symmetry_tolerance ×` the mean edge
 //!   length.
 use crate::face_table::FaceTable;
+use crate::normal_fit::{FitWorkspace, NormalFit};
 use crate::SmoothError;
 use fv_mesh::{Real, Vector};
 use std::fmt;
@@ -209,6 +210,10 @@ pub struct PointNormalParams {
     /// is exact for any closed fan of points on a sphere, quadrilaterals
     /// included. Default `true`; `false` is eq. 4.80 as printed.
     pub corner_normals: bool,
+    /// Refine the weighted normals by a local quadric fit
+    /// ([`NormalFit`], the fitting approach of §4.6.1); `None` keeps eq.
+    /// 4.80. Applied before the two corrections.
+    pub fit: Option<NormalFit>,
 }
 
 impl Default for PointNormalParams {
@@ -225,6 +230,7 @@ impl Default for PointNormalParams {
             transition: Some(TransitionCorrection::default()),
             symmetry_tolerance: 1e-6,
             corner_normals: true,
+            fit: Some(NormalFit::default()),
         }
     }
 }
@@ -236,6 +242,7 @@ impl PointNormalParams {
         PointNormalParams {
             weighting: NormalWeighting::Equal,
             corner_normals: false,
+            fit: None,
             ..Self::default()
         }
     }
@@ -286,6 +293,8 @@ pub struct PointNormals {
     on_planes: Vec<u32>,
     /// Workspace: the point is inside a flat zone.
     flat: Vec<bool>,
+    /// Workspace of the quadric fit.
+    fit: FitWorkspace,
 }
 
 impl PointNormals {
@@ -353,6 +362,7 @@ impl PointNormals {
             planes: units,
             on_planes,
             flat: vec![false; table.n_points()],
+            fit: FitWorkspace::new(table.n_points(), table.n_faces()),
         })
     }
 
@@ -422,6 +432,9 @@ impl PointNormals {
             *n_out = unit_or_zero(sum)
                 .or_else(|| unit_or_zero(plain))
                 .unwrap_or_default();
+        }
+        if let Some(fit) = self.params.fit {
+            fit.refine(table, points, face_normals, out, &mut self.fit);
         }
         if let Some(t) = self.params.transition {
             self.correct_transitions(&t, table, face_normals, out);

@@ -85,8 +85,12 @@ fn check(flat: &str, smoothed: &str) {
         coarse.mean_outer(),
         coarse.cost.us_per_cell_iteration() / faceted.cost.us_per_cell_iteration()
     );
-    assert!(mean.abs() <= 0.02, "coarse vs fine mean {mean}");
-    assert!(max <= 0.02, "coarse vs fine max {max}");
+    // issue 9 asks for 2 %; measured +0.11 % and 0.25 % (segment-to-segment-
+    // nagata, 2.5 m; before the quadric fit of point normals 0.41 % and
+    // 0.95 %): guarded tighter so that a loss of normal accuracy shows
+    assert!(mean.abs() <= 0.003, "coarse vs fine mean {mean}");
+    assert!(max <= 0.006, "coarse vs fine max {max}");
+    assert!(sb.peak_to_peak < 0.01, "{sb:?}");
     assert!(sb.peak_to_peak < sa.peak_to_peak, "{sb:?} {sa:?}");
     assert!(sb.wiggle < sa.wiggle, "{sb:?} {sa:?}");
 }

@@ -30,7 +30,6 @@ use crate::patch::{DomainEdge, NagataPatch};
 use crate::weingarten::normal_derivatives;
 use crate::SmoothError;
 use fv_mesh::{Real, Vector};
-use nalgebra::Matrix3;
 
 /// Knobs of the projection.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -152,20 +151,25 @@ pub fn project_onto_patch<P: NagataPatch + ?Sized>(
     let domain = patch.domain();
     let (e0, z0) = patch.flat_start(xs);
     let (mut eta, mut zeta) = domain.clamp(e0, z0);
-    let mut g = match normal_derivatives(&patch.derivatives(eta, zeta)) {
-        Some(w) => (xs - patch.point(eta, zeta)).dot(&w.n),
+    let mut d = patch.derivatives(eta, zeta);
+    let mut w = match normal_derivatives(&d) {
+        Some(w) => Some(w),
         None => {
             (eta, zeta) = domain.centre();
-            let w = normal_derivatives(&patch.derivatives(eta, zeta))?;
-            (xs - patch.point(eta, zeta)).dot(&w.n)
+            d = patch.derivatives(eta, zeta);
+            Some(normal_derivatives(&d)?)
         }
     };
+    let mut g = w.map_or(0.0, |w| (xs - d.x).dot(&w.n));
     let mut converged = false;
     let mut updates = 0;
     let mut interior = None;
     loop {
-        let d = patch.derivatives(eta, zeta);
-        let Some(w) = normal_derivatives(&d) else {
+        if updates > 0 {
+            d = patch.derivatives(eta, zeta);
+            w = normal_derivatives(&d);
+        }
+        let Some(w) = w else {
             break;
         };
         let f = d.x + g * w.n - xs;
@@ -177,14 +181,10 @@ pub fn project_onto_patch<P: NagataPatch + ?Sized>(
         if updates == params.max_iterations {
             break;
         }
-        let jac = Matrix3::from_columns(&[d.s1 + g * w.n_eta, d.s2 + g * w.n_zeta, w.n]);
-        let Some(delta) = jac.lu().solve(&(-f)) else {
+        let Some(delta) = solve3(&(d.s1 + g * w.n_eta), &(d.s2 + g * w.n_zeta), &w.n, &(-f)) else {
             break;
         };
-        if !delta.iter().all(|v| v.is_finite()) {
-            break;
-        }
-        let len = delta.x.hypot(delta.y);
+        let len = (delta.x * delta.x + delta.y * delta.y).sqrt();
         let s = if len > MAX_STEP { MAX_STEP / len } else { 1.0 };
         eta += s * delta.x;
         zeta += s * delta.y;
@@ -231,6 +231,22 @@ pub fn project_onto_patch<P: NagataPatch + ?Sized>(
         converged,
         inside: false,
     })
+}
+
+/// Solves `[c₁ c₂ c₃] x = b` (the Newton step of eq. 4.83 with the
+/// Jacobian of eq. 4.84 as columns) by Cramer's rule with cross products;
+/// `None` when the columns are (nearly) linearly dependent or the result
+/// is not finite. Hand-written: a pivoted LU of a 3 × 3 costs several times
+/// more, and this solve is the projection's inner loop.
+fn solve3(c1: &Vector, c2: &Vector, c3: &Vector, b: &Vector) -> Option<Vector> {
+    let c23 = c2.cross(c3);
+    let det = c1.dot(&c23);
+    let scale = c1.norm() * c2.norm() * c3.norm();
+    if !(det.abs() > 1e-14 * scale) {
+        return None;
+    }
+    let x = Vector::new(b.dot(&c23), c1.dot(&b.cross(c3)), c1.dot(&c2.cross(b))) / det;
+    x.iter().all(|v| v.is_finite()).then_some(x)
 }
 
 /// Closest point to `xs` on the sides of the patch boundary selected by

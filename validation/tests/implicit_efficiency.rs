@@ -1,9 +1,76 @@
-//! Implicit against explicit contact coupling (thesis §4.5, Tables 4.5–4.7).
-use validation::benchmarks::coupling_efficiency::{calibrate, sweep, Benchmark, CouplingRun};
+//! Implicit against explicit contact coupling (thesis §4.5, Tables 4.5–4.7;
+//! issue 8: "at ε_n/E = 1000 implicit coupling needs ≥ 10× fewer outer
+//! iterations than the best explicit, pressures within 0.5 %").
+//!
+//! ε_n = f_n K̄ Γ̄/Ω̄ (eq. 4.4a), so f_n = (ε_n/E_s)·E_s/ε_n(f_n = 1), with
+//! ε_n(1) measured on each case's mesh ([`calibrate`]); K/E = 1.3462 (ν = 0.3),
+//! ℓ̄ = K/ε_n(1) the mean contact cell height of eq. 4.4a. One load step,
+//! no cut-backs, the case's own tolerance (hertz-cylinder and
+//! concentric-cylinders 1e-7, sphere-block 1e-6). "gap" is the mean
+//! penetration of the slave faces in contact / their mean owner-cell height.
+//! Δp = max_f |p_impl − p_expl| / max p_impl over both contact surfaces.
+//! Explicit: `relaxation = { normal = r, tangential = r }`; "—" = no
+//! convergence within the cap (20,000 unless said); a run stopped at the
+//! best count so far is not listed.
+//!
+//! Measured (2 cores, release; `cargo test --release -p validation --test
+//! implicit_efficiency -- --ignored probe --nocapture` with FVC_CASE,
+//! FVC_RATIO, FVC_RELAX, FVC_CAP):
+//!
+//! hertz-cylinder coarse (1,615 cells): ε_n(1) = 3.109e3 Pa/m, ℓ̄ = 0.0866 m
+//!
+//! | ε_n/E_s | f_n   | implicit | explicit r: outer             | best expl. | ratio | Δp      | gap     | thesis (impl/expl/gap) |
+//! |---------|-------|----------|-------------------------------|------------|-------|---------|---------|------------------------|
+//! | 10      | 0.643 | 83       | 1.0/0.7/0.5/0.4/0.3: —, 0.2: 82 | 82 (0.2)   | 0.99  | 1.8e-6  | 1.49 %  | 52 / 114 / 4 %         |
+//! | 100     | 6.43  | 93       | 0.3…0.05: —, 0.03: 302        | 302 (0.03) | 3.25  | 1.5e-4  | 0.18 %  | 57 / 672 / 0.5 %       |
+//! | 1000    | 64.3  | 278      | 0.005…0.3: —, 0.004: 1802, 0.003: 2171, 0.002: 2972, 0.001: 4668 | 1802 (0.004) | 6.48 | 6.7e-4 | 0.019 % | 60 / 2332 / 0.05 % |
+//!
+//! Implicit at ε_n/E_s = 10,000 (f_n 643): 902 outer; 100,000: 1,264.
+//!
+//! sphere–rigid plane (`sphere-block/case-rigid.toml`): ε_n(1) = 6.109e4
+//! Pa/m, ℓ̄ = 0.0132 m
+//!
+//! | ε_n/E_s | f_n    | implicit | explicit r: outer                       | best expl. | ratio | Δp     | gap    | thesis         |
+//! |---------|--------|----------|-----------------------------------------|------------|-------|--------|--------|----------------|
+//! | 10      | 0.0982 | 68       | see report                              |            |       |        | 22.0 % | 58 / 64 / 13 % |
+//! | 100     | 0.982  | 67       | see report                              |            |       |        | 3.77 % | 60 / 245 / 2 % |
+//! | 1000    | 9.82   | 72       | 0.01: 287, 0.02: 191, 0.04: 136, 0.08: — | 136 (0.04) | 1.89  | 5.2e-4 | 0.40 % | 61 / 1107 / 0.2 % |
+//!
+//! (Explicit at r = 0.01 stops at the tolerance with Δp = 0.33 %: the
+//! displacement residual is small because the traction moves slowly.)
+//!
+//! sphere–block, deformable (`sphere-block/case.toml`): ε_n(1) = 4.066e4
+//! Pa/m: implicit 81 outer at ε_n/E_s = 10 (f_n 0.148; gap 8.2 %); at 1000
+//! (f_n 14.8) NOT converged after 2,000 (residual 3.3e-3; gap 0.15 %).
+//! Thesis Table 4.7: 73/68/11 %, 79/230/1.5 %, 81/903/0.2 %.
+//!
+//! concentric-cylinders (two deformable tubes, non-conformal): ε_n(1) =
+//! 2.982e4 Pa/m, ℓ̄ = 0.0451 m: implicit 254 outer at 10 (f_n 0.335), 1,431
+//! at 100 (f_n 3.35), NOT converged at 1000 (f_n 33.5; residual 1.9e-2 after
+//! 5,000).
+//!
+//! So the acceptance point is not met: 6.5× on hertz-cylinder coarse, 1.9×
+//! on the sphere on a rigid plane, and implicit coupling of two deformable
+//! bodies does not converge at ε_n/E_s = 1000. The tests below assert what
+//! is achieved; `concentric_cylinders_1000` (ignored) asserts the
+//! acceptance point and fails today.
+use validation::benchmarks::coupling_efficiency::{calibrate, run, sweep, Benchmark, CouplingRun};
+use validation::benchmarks::CouplingSettings;
+
+/// ε_n/E_s of the acceptance point.
+const RATIO: f64 = 1000.0;
+
+/// Best explicit relaxation on hertz-cylinder coarse at ε_n/E_s = 1000
+/// (sweep above: 0.004 → 1,802 outer; 0.005 does not converge in 20,000).
+const HERTZ_COARSE_BEST_RELAXATION: f64 = 0.004;
+
+/// Best explicit relaxation on the sphere–rigid plane at ε_n/E_s = 1000
+/// (sweep above: 0.04 → 136 outer; 0.08 does not converge).
+const SPHERE_RIGID_BEST_RELAXATION: f64 = 0.04;
 
 fn line(r: &CouplingRun) {
     eprintln!(
-        "  {} f_n {:.4} r {:.3}: {} {} outer, {:.2} s, {:.3} µs/cell/iter, eps {:.4e}, rel gap {:.4} %, {:?}",
+        "  {} f_n {:.4} r {:.4}: {} {} outer, {:.2} s, {:.3} µs/cell/iter, ε_n {:.4e}, gap {:.4} % (cell height {:.4e}), {:?}",
         if r.settings.implicit { "implicit" } else { "explicit" },
         r.settings.penalty_scale,
         r.settings.relaxation,
@@ -13,12 +80,112 @@ fn line(r: &CouplingRun) {
         r.cost.us_per_cell_iteration(),
         r.normal_penalty,
         100.0 * r.relative_gap,
+        r.contact_cell_height,
         r.failure
     );
 }
 
+/// Implicit and explicit (relaxation `relaxation`) at ε_n/E_s = 1000;
+/// returns (implicit, explicit, outer-iteration ratio, Δp).
+fn compare(
+    b: Benchmark,
+    relaxation: f64,
+    max_outer: usize,
+) -> (CouplingRun, CouplingRun, f64, f64) {
+    let cal = calibrate(b);
+    let f_n = cal.penalty_scale(RATIO);
+    eprintln!(
+        "{}: ε_n(1) = {:.4e} Pa/m, K/E = {:.4}, ℓ̄ = {:.4e} m, f_n = {:.4}",
+        b.name(),
+        cal.unit_penalty,
+        cal.stiffness_ratio,
+        cal.cell_height(),
+        f_n
+    );
+    let implicit = run(b, CouplingSettings::implicit(f_n, max_outer));
+    line(&implicit);
+    let explicit = run(b, CouplingSettings::explicit(f_n, relaxation, max_outer));
+    line(&explicit);
+    // the penalty is the one asked for
+    assert!(
+        (implicit.normal_penalty / (RATIO * b.young()) - 1.0).abs() < 1e-9,
+        "ε_n/E_s = {}",
+        implicit.normal_penalty / b.young()
+    );
+    let ratio = explicit.cost.outer_iterations as f64 / implicit.cost.outer_iterations as f64;
+    let dp = explicit.pressure_difference(&implicit);
+    eprintln!("  ratio {ratio:.2}, Δp {:.3e}", dp);
+    (implicit, explicit, ratio, dp)
+}
+
+/// hertz-cylinder coarse at ε_n/E_s = 1000: measured 278 implicit against
+/// 1,802 explicit outer iterations (6.5×, not the 10× asked), Δp = 0.07 %.
 #[test]
-#[ignore = "exploration"]
+fn hertz_cylinder_coarse_1000() {
+    let (implicit, explicit, ratio, dp) = compare(
+        Benchmark::HertzCylinderCoarse,
+        HERTZ_COARSE_BEST_RELAXATION,
+        20_000,
+    );
+    assert!(implicit.converged, "{:?}", implicit.failure);
+    assert!(explicit.converged, "{:?}", explicit.failure);
+    // measured 6.48: the implicit count grows with the penalty here (83,
+    // 93, 278 at 10, 100, 1000), so the 10× of issue 8 is not reached
+    assert!(ratio >= 6.0, "explicit/implicit outer iterations {ratio}");
+    assert!(dp < 0.005, "pressure difference {dp}");
+    // mean penetration 0.019 % of the contact cell height (thesis 0.05 %)
+    assert!(
+        implicit.relative_gap < 5e-4,
+        "gap {}",
+        implicit.relative_gap
+    );
+}
+
+/// Sphere on a rigid plane at ε_n/E_s = 1000: measured 72 implicit against
+/// 136 explicit outer iterations (1.9×), Δp = 0.05 %.
+#[test]
+fn sphere_rigid_1000() {
+    let (implicit, explicit, ratio, dp) =
+        compare(Benchmark::SphereRigid, SPHERE_RIGID_BEST_RELAXATION, 3_000);
+    assert!(implicit.converged, "{:?}", implicit.failure);
+    assert!(explicit.converged, "{:?}", explicit.failure);
+    // the implicit count does not grow with the penalty here (68, 67, 72 at
+    // 10, 100, 1000, as in thesis Table 4.5: 58, 60, 61), but the optimally
+    // relaxed explicit coupling converges in 136: 1.9×, not 10×
+    assert!(implicit.cost.outer_iterations <= 90);
+    assert!(ratio >= 1.7, "explicit/implicit outer iterations {ratio}");
+    assert!(dp < 0.005, "pressure difference {dp}");
+    assert!(
+        implicit.relative_gap < 0.006,
+        "gap {}",
+        implicit.relative_gap
+    );
+}
+
+/// The acceptance point on two deformable bodies. Fails today: implicit
+/// coupling stalls (residual 1.9e-2 after 5,000 outer iterations at
+/// f_n = 33.5). Run with
+/// `cargo test --release -p validation --test implicit_efficiency -- --ignored concentric`.
+#[test]
+#[ignore = "fails: implicit coupling of two deformable bodies stalls at ε_n/E_s = 1000 (issue 8)"]
+fn concentric_cylinders_1000() {
+    let b = Benchmark::ConcentricCylinders;
+    let cal = calibrate(b);
+    let implicit = run(
+        b,
+        CouplingSettings::implicit(cal.penalty_scale(RATIO), 5_000),
+    );
+    line(&implicit);
+    assert!(implicit.converged, "{:?}", implicit.failure);
+    assert!(implicit.cost.outer_iterations <= 2_000);
+}
+
+/// The sweep behind the tables: FVC_CASE = coarse | fine | rigid | block |
+/// tubes, FVC_RATIO (default 1000), FVC_RELAX = comma-separated
+/// relaxations (default: 0.1·10/ratio × 0.25 … 4), FVC_CAP (default 20000).
+/// `cargo test --release -p validation --test implicit_efficiency -- --ignored probe --nocapture`
+#[test]
+#[ignore = "sweep (minutes per case); prints the table rows"]
 fn probe() {
     let b = match std::env::var("FVC_CASE").as_deref() {
         Ok("fine") => Benchmark::HertzCylinderFine,
@@ -29,35 +196,49 @@ fn probe() {
     };
     let cal = calibrate(b);
     eprintln!(
-        "{}: eps(1) = {:.4e}, K/E = {:.4}, l = {:.4e}",
+        "{}: ε_n(1) = {:.4e} Pa/m, K/E = {:.4}, ℓ̄ = {:.4e} m",
         b.name(),
         cal.unit_penalty,
         cal.stiffness_ratio,
         cal.cell_height()
     );
-    let ratio: f64 = std::env::var("FVC_RATIO").ok().and_then(|s| s.parse().ok()).unwrap_or(1000.0);
-    let rel: Vec<f64> = std::env::var("FVC_RELAX")
+    let ratio: f64 = std::env::var("FVC_RATIO")
         .ok()
-        .map(|s| s.split(',').filter_map(|x| x.parse().ok()).collect())
-        .unwrap_or_default();
-    let cap: usize = std::env::var("FVC_CAP").ok().and_then(|s| s.parse().ok()).unwrap_or(3000);
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(RATIO);
+    let rel: Vec<f64> = match std::env::var("FVC_RELAX") {
+        Ok(s) => s.split(',').filter_map(|x| x.parse().ok()).collect(),
+        Err(_) => [0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0, 4.0]
+            .iter()
+            .map(|k| (k * 0.1 * 10.0 / ratio).min(1.0))
+            .collect(),
+    };
+    let cap: usize = std::env::var("FVC_CAP")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(20_000);
     let row = sweep(&cal, ratio, &rel, cap, line);
-    eprintln!("f_n = {}", row.penalty_scale);
+    eprintln!("ε_n/E_s = {ratio}, f_n = {:.4}", row.penalty_scale);
     for e in &row.explicit {
         eprintln!(
-            "  r {:.4}: {} outer ({}), dp vs implicit {:.3e}, gap {:.4} %",
+            "  r {:.4}: {} outer ({}), Δp vs implicit {:.3e}, gap {:.4} %",
             e.settings.relaxation,
             e.cost.outer_iterations,
-            e.converged,
+            if e.converged {
+                "converged"
+            } else {
+                "not converged"
+            },
             e.pressure_difference(&row.implicit),
             100.0 * e.relative_gap
         );
     }
     if let Some(best) = row.best_explicit() {
         eprintln!(
-            "best explicit r = {}, {} outer, ratio {:.2}, dp {:.3e}",
+            "best explicit r = {}, {} outer against {} implicit: ratio {:.2}, Δp {:.3e}",
             best.settings.relaxation,
             best.cost.outer_iterations,
+            row.implicit.cost.outer_iterations,
             best.cost.outer_iterations as f64 / row.implicit.cost.outer_iterations as f64,
             best.pressure_difference(&row.implicit)
         );

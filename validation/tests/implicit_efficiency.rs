@@ -51,8 +51,9 @@
 //! sphere–block, deformable (`sphere-block/case.toml`): ε_n(1) = 4.066e4
 //! Pa/m. At ε_n/E_s = 10 (f_n 0.148): implicit 81, explicit 0.1: 82,
 //! 0.2: 81 (Δp 1.4e-5), gap 8.2 %. At 1000 (f_n 14.8): implicit NOT
-//! converged after 2,000 (residual 3.3e-3; gap 0.15 %); the explicit sweep
-//! at 100 and 1000 was not run (≈ 25 ms per outer iteration). Thesis
+//! converged after 2,000 (residual 3.3e-3; gap 0.15 %); explicit at 1000
+//! with r = 0.04 and 0.02 not converged after 1,500 either (residual 9e-4,
+//! 1.6e-3); ε_n/E_s = 100 not run (≈ 30 ms per outer iteration). Thesis
 //! Table 4.7: 73/68/11 %, 79/230/1.5 %, 81/903/0.2 %.
 //!
 //! concentric-cylinders (two deformable tubes, non-conformal): ε_n(1) =

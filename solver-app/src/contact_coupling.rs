@@ -371,6 +371,15 @@ fn penalty_law(
     params.contact_law(master, mm.as_ref(), slave, sm.as_ref())
 }
 
+impl ContactInterface {
+    /// The normal penalty ε_n in use (eq. 4.4a, Pa/m): after the first
+    /// contact update of an increment, from the faces that have a candidate
+    /// partner.
+    pub fn normal_penalty(&self) -> f64 {
+        self.law.normal_penalty
+    }
+}
+
 impl ContactSet {
     /// Builds the contact pairs of a case (after the bodies).
     pub fn new(case: &Case, bodies: &[Body]) -> Result<Self, InputError> {

@@ -99,6 +99,7 @@ fn main() -> ExitCode {
                 output,
                 quiet,
                 no_files: false,
+                no_cutbacks: false,
             };
             match run_case(&case, &opts) {
                 Ok(out) if out.converged => ExitCode::SUCCESS,

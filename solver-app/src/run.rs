@@ -23,6 +23,10 @@ pub struct RunOptions {
     pub quiet: bool,
     /// Write no files (tests and benchmarks).
     pub no_files: bool,
+    /// A failed increment is not halved and redone (benchmarks that count
+    /// the outer iterations of one step, e.g. the coupling efficiency of
+    /// thesis Tables 4.5–4.7).
+    pub no_cutbacks: bool,
 }
 
 /// Result of a run.
@@ -231,7 +235,7 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
                 Ok(info) => !info.converged,
                 Err(e) => !matches!(e, crate::segregated::SolveError::Unconstrained { .. }),
             };
-            if failed && cuts < MAX_CUTBACKS {
+            if failed && !opts.no_cutbacks && cuts < MAX_CUTBACKS {
                 let why = match &attempt {
                     Ok(info) => format!(
                         "no convergence in {} outer iterations",

@@ -8,21 +8,36 @@ pub mod report;
 
 use std::path::Path;
 
-use solver_app::case::parse_case;
+use solver_app::case::{parse_case, Case};
 use solver_app::run::{run_case, RunOptions, RunOutcome};
 
 /// Parses a case given as TOML text (relative mesh paths resolve against
 /// `dir`) and runs it without writing files.
 pub fn run_toml(text: &str, dir: &Path) -> RunOutcome {
-    let case = match parse_case(text, &dir.join("case.toml")) {
+    run_toml_edited(text, dir, false, |_| {})
+}
+
+/// Like [`run_toml`], with the parsed case changed by `edit` first (e.g.
+/// [`benchmarks::CouplingSettings::apply`]); `no_cutbacks`: a failed
+/// increment is not halved and redone, so the outer iterations are those
+/// of the increments as given.
+pub fn run_toml_edited(
+    text: &str,
+    dir: &Path,
+    no_cutbacks: bool,
+    edit: impl FnOnce(&mut Case),
+) -> RunOutcome {
+    let mut case = match parse_case(text, &dir.join("case.toml")) {
         Ok(c) => c,
         Err(e) => panic!("test case does not parse: {e}"),
     };
+    edit(&mut case);
     match run_case(
         &case,
         &RunOptions {
             no_files: true,
             quiet: true,
+            no_cutbacks,
             ..Default::default()
         },
     ) {

@@ -3,6 +3,7 @@
 //! and the validation report plots them.
 pub mod block_in_half_tube;
 pub mod concentric_cylinders;
+pub mod coupling_efficiency;
 pub mod flat_punch;
 pub mod hertz_cylinder;
 pub mod hertz_sphere;
@@ -37,6 +38,64 @@ pub fn swap_master_slave(text: &str, master: &str, slave: &str) -> String {
             &format!("slave = \"{master}\""),
         )
         .replace("master = \"@\"", &format!("master = \"{slave}\""))
+}
+
+/// Coupling settings of a case's first `[[contact]]`, to override the
+/// case file's (thesis §4.1.3 explicit, §4.5 implicit coupling).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CouplingSettings {
+    /// Implicit coupling (the relaxation is then not used).
+    pub implicit: bool,
+    /// f_n^scale of eq. 4.4a.
+    pub penalty_scale: f64,
+    /// Under-relaxation of the normal and tangential traction (eq. 4.13),
+    /// in (0, 1]; explicit coupling only.
+    pub relaxation: f64,
+    /// Outer iterations per increment at most (`[solver] max_outer`).
+    pub max_outer: usize,
+}
+
+impl CouplingSettings {
+    /// Implicit coupling with penalty scale `penalty_scale`.
+    pub fn implicit(penalty_scale: f64, max_outer: usize) -> Self {
+        CouplingSettings {
+            implicit: true,
+            penalty_scale,
+            relaxation: 1.0,
+            max_outer,
+        }
+    }
+
+    /// Explicit coupling with penalty scale `penalty_scale` and traction
+    /// relaxation `relaxation`.
+    pub fn explicit(penalty_scale: f64, relaxation: f64, max_outer: usize) -> Self {
+        CouplingSettings {
+            implicit: false,
+            penalty_scale,
+            relaxation,
+            max_outer,
+        }
+    }
+
+    /// Sets these on `case.contacts[0]` and `case.solver.max_outer`.
+    ///
+    /// # Panics
+    /// When the case has no contact (a benchmark helper).
+    pub fn apply(&self, case: &mut solver_app::case::Case) {
+        use solver_app::case::Coupling;
+        let Some(c) = case.contacts.first_mut() else {
+            panic!("case '{}' has no [[contact]]", case.title)
+        };
+        c.coupling = if self.implicit {
+            Coupling::Implicit
+        } else {
+            Coupling::Explicit
+        };
+        c.penalty_scale = self.penalty_scale;
+        c.relaxation_normal = self.relaxation;
+        c.relaxation_tangential = self.relaxation;
+        case.solver.max_outer = self.max_outer;
+    }
 }
 
 /// Cost figures of one run.

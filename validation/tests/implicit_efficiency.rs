@@ -1,0 +1,309 @@
+//! Implicit against explicit contact coupling (thesis §4.5, Tables 4.5–4.7;
+//! issue 8: "at ε_n/E = 1000 implicit coupling needs ≥ 10× fewer outer
+//! iterations than the best explicit, pressures within 0.5 %").
+//!
+//! ε_n = f_n K̄ Γ̄/Ω̄ (eq. 4.4a), so f_n = (ε_n/E_s)·E_s/ε_n(f_n = 1), with
+//! ε_n(1) measured on each case's mesh ([`calibrate`]); K/E = 1.3462 (ν = 0.3),
+//! ℓ̄ = K/ε_n(1) the mean contact cell height of eq. 4.4a. One load step,
+//! no cut-backs, the case's own tolerance (hertz-cylinder and
+//! concentric-cylinders 1e-7, sphere-block 1e-6). "gap" is the mean
+//! penetration of the slave faces in contact / their mean owner-cell height.
+//! Δp = max_f |p_impl − p_expl| / max p_impl over both contact surfaces.
+//! Explicit: `relaxation = { normal = r, tangential = r }`; "—" = no
+//! convergence within the cap (20,000 unless said); a run stopped at the
+//! best count so far is not listed.
+//!
+//! Measured (2 cores, release; `cargo test --release -p validation --test
+//! implicit_efficiency -- --ignored probe --nocapture` with FVC_CASE,
+//! FVC_RATIO, FVC_RELAX, FVC_CAP):
+//!
+//! hertz-cylinder coarse (1,615 cells): ε_n(1) = 3.109e3 Pa/m, ℓ̄ = 0.0866 m
+//!
+//! | ε_n/E_s | f_n   | implicit | explicit r: outer             | best expl. | ratio | Δp      | gap     | thesis (impl/expl/gap) |
+//! |---------|-------|----------|-------------------------------|------------|-------|---------|---------|------------------------|
+//! | 10      | 0.643 | 83       | 1.0/0.7/0.5/0.4/0.3: —, 0.2: 82 | 82 (0.2)   | 0.99  | 1.8e-6  | 1.49 %  | 52 / 114 / 4 %         |
+//! | 100     | 6.43  | 93       | 0.3…0.05: —, 0.03: 302        | 302 (0.03) | 3.25  | 1.5e-4  | 0.18 %  | 57 / 672 / 0.5 %       |
+//! | 1000    | 64.3  | 278      | 0.005…0.3: —, 0.004: 1802, 0.003: 2171, 0.002: 2972, 0.001: 4668 | 1802 (0.004) | 6.48 | 6.7e-4 | 0.019 % | 60 / 2332 / 0.05 % |
+//!
+//! Implicit at ε_n/E_s = 10,000 (f_n 643): 902 outer; 100,000: 1,264.
+//!
+//! hertz-cylinder fine (6,460 cells; the thesis's mesh for Table 4.5):
+//! ε_n(1) = 6.731e3 Pa/m, ℓ̄ = 0.0400 m
+//!
+//! | ε_n/E_s | f_n   | implicit | explicit r: outer                        | best expl.    | ratio | Δp     | gap     | thesis (impl/expl/gap) |
+//! |---------|-------|----------|------------------------------------------|---------------|-------|--------|---------|------------------------|
+//! | 10      | 0.297 | 85       | 0.1: 100, 0.2: 90, 0.3: —                | 90 (0.2)      | 1.06  | 9.6e-6 | 3.42 %  | 52 / 114 / 4 %         |
+//! | 100     | 2.97  | 94       | 0.02: 383, 0.03: 285, 0.04: —            | 285 (0.03)    | 3.03  | 7.4e-5 | 0.40 %  | 57 / 672 / 0.5 %       |
+//! | 1000    | 29.7  | 122      | 0.002: 2,543, 0.0025: (stopped at 1,815), 0.003: 2,000, 0.0035: 1,815, 0.004: — | 1,815 (0.0035) | 14.9 | 1.4e-3 | 0.040 % | 60 / 2332 / 0.05 % |
+//!
+//! sphere–rigid plane (`sphere-block/case-rigid.toml`): ε_n(1) = 6.109e4
+//! Pa/m, ℓ̄ = 0.0132 m
+//!
+//! | ε_n/E_s | f_n    | implicit | explicit r: outer                       | best expl. | ratio | Δp     | gap    | thesis         |
+//! |---------|--------|----------|-----------------------------------------|------------|-------|--------|--------|----------------|
+//! | 10      | 0.0982 | 68       | 0.1: 68, 0.2: 68, 0.3: 67, 0.5: (stopped at 67, res 2.9e-6) | 67 (0.3) | 0.99 | 2.5e-5 | 22.0 % | 58 / 64 / 13 % |
+//! | 100     | 0.982  | 67       | 0.03: 106, 0.05: 77, 0.1: 68, 0.2: 66   | 66 (0.2)   | 0.99  | 1.3e-4 | 3.77 % | 60 / 245 / 2 % |
+//! | 1000    | 9.82   | 72       | 0.01: 287, 0.02: 191, 0.04: 136, 0.05/0.06/0.08: — (cap 3,000) | 136 (0.04) | 1.89 | 5.2e-4 | 0.40 % | 61 / 1107 / 0.2 % |
+//!
+//! (Explicit at r = 0.01 stops at the tolerance with Δp = 0.33 %: the
+//! displacement residual is small because the traction moves slowly.)
+//!
+//! sphere–block, deformable (`sphere-block/case.toml`): ε_n(1) = 4.066e4
+//! Pa/m. At ε_n/E_s = 10 (f_n 0.148): implicit 81, explicit 0.1: 82,
+//! 0.2: 81 (Δp 1.4e-5), gap 8.2 %. At 1000 (f_n 14.8): implicit NOT
+//! converged after 2,000 (residual 3.3e-3; gap 0.15 %); explicit at 1000
+//! with r = 0.04 and 0.02 not converged after 1,500 either (residual 9e-4,
+//! 1.6e-3); ε_n/E_s = 100 not run (≈ 30 ms per outer iteration). Thesis
+//! Table 4.7: 73/68/11 %, 79/230/1.5 %, 81/903/0.2 %.
+//!
+//! concentric-cylinders (two deformable tubes, non-conformal): ε_n(1) =
+//! 2.982e4 Pa/m, ℓ̄ = 0.0451 m (the measured gap reads 0 on the faces with
+//! pressure: the faceted arcs interfere; p̄/(ε_n ℓ̄) ≈ 0.77, 0.077, 0.0077 %):
+//!
+//! | ε_n/E_s | f_n   | implicit          | explicit r: outer                         | best expl.   | ratio |
+//! |---------|-------|-------------------|-------------------------------------------|--------------|-------|
+//! | 10      | 0.335 | 254               | 0.05, 0.1, 0.2, 0.4: —                    | —            | > 78  |
+//! | 100     | 3.35  | 1,431             | 0.005: 955 (Δp 4.4e-4), 0.01…0.05: —      | 955 (0.005)  | 0.67  |
+//! | 1000    | 33.5  | — (res 1.9e-2)    | 0.0005: 5,246, 0.001: 4,048, 0.002: 2,755, 0.005: — | 2,755 (0.002) | < 0.14 |
+//!
+//! At 1000 the implicit iterates diverge in the first ten outer iterations
+//! (contact force 35 → 97 → 193 → 827 → 8,795 N, penetration up to 0.19 m
+//! = 4 ℓ̄), the surfaces pass through each other beyond the detection
+//! range, the contact force becomes 0 and the inner tube, held by
+//! symmetry planes only, creeps: the "stall" is a divergence. It does not
+//! depend on the relaxation of t* (IMPLICIT_NORMAL_RELAXATION 1.0, 0.7,
+//! 0.4, 0.2 all end at residual 1.5–1.9e-2), so it is the linearised part
+//! (cell springs and eq. 4.69 boundary values) that overshoots.
+//!
+//! On hertz-cylinder the implicit count grows with ε_n (83, 93, 278, 902,
+//! 1,264 at 10 … 100,000) while it stays flat on the sphere (68, 67, 72),
+//! as in the thesis. A likely cause, not verified: the contact algorithm
+//! sees the surface through the cell-to-point interpolation, so a mode of
+//! the face displacements that the points average out (a zig-zag along
+//! the 2D arc) changes no gap, yet eq. 4.52 anchors it with ε_n β to the
+//! previous iterate; its error then shrinks by ε_n/(K_mode + ε_n) per outer
+//! iteration, which tends to 1 as ε_n grows.
+//!
+//! So the acceptance point is met on hertz-cylinder fine only (14.9×,
+//! Δp 0.14 %); not on the coarse mesh (6.5×), not on the sphere on a rigid
+//! plane (1.9×: the optimally relaxed explicit coupling needs only 136),
+//! and implicit coupling of two deformable bodies (sphere–block,
+//! concentric cylinders) does not converge at ε_n/E_s = 1000. The tests below assert what
+//! is achieved; `concentric_cylinders_1000` (ignored) asserts the
+//! acceptance point and fails today.
+use validation::benchmarks::coupling_efficiency::{calibrate, run, sweep, Benchmark, CouplingRun};
+use validation::benchmarks::CouplingSettings;
+
+/// ε_n/E_s of the acceptance point.
+const RATIO: f64 = 1000.0;
+
+/// Best explicit relaxation on hertz-cylinder coarse at ε_n/E_s = 1000
+/// (sweep above: 0.004 → 1,802 outer; 0.005 does not converge in 20,000).
+const HERTZ_COARSE_BEST_RELAXATION: f64 = 0.004;
+
+/// Best explicit relaxation on hertz-cylinder fine at ε_n/E_s = 1000
+/// (sweep above: 0.0035 → 1,815 outer, 0.003 → 2,000; 0.004 does not converge).
+const HERTZ_FINE_BEST_RELAXATION: f64 = 0.0035;
+
+/// Best explicit relaxation on the sphere–rigid plane at ε_n/E_s = 1000
+/// (sweep above: 0.04 → 136 outer; 0.08 does not converge).
+const SPHERE_RIGID_BEST_RELAXATION: f64 = 0.04;
+
+fn line(r: &CouplingRun) {
+    eprintln!(
+        "  {} f_n {:.4} r {:.4}: {} {} outer, {:.2} s, {:.3} µs/cell/iter, ε_n {:.4e}, gap {:.4} % (cell height {:.4e}), {:?}",
+        if r.settings.implicit { "implicit" } else { "explicit" },
+        r.settings.penalty_scale,
+        r.settings.relaxation,
+        if r.converged { "converged" } else { "NOT converged" },
+        r.cost.outer_iterations,
+        r.cost.wall_seconds,
+        r.cost.us_per_cell_iteration(),
+        r.normal_penalty,
+        100.0 * r.relative_gap,
+        r.contact_cell_height,
+        r.failure
+    );
+}
+
+/// Implicit and explicit (relaxation `relaxation`) at ε_n/E_s = 1000;
+/// returns (implicit, explicit, outer-iteration ratio, Δp).
+fn compare(
+    b: Benchmark,
+    relaxation: f64,
+    max_outer: usize,
+) -> (CouplingRun, CouplingRun, f64, f64) {
+    let cal = calibrate(b);
+    let f_n = cal.penalty_scale(RATIO);
+    eprintln!(
+        "{}: ε_n(1) = {:.4e} Pa/m, K/E = {:.4}, ℓ̄ = {:.4e} m, f_n = {:.4}",
+        b.name(),
+        cal.unit_penalty,
+        cal.stiffness_ratio,
+        cal.cell_height(),
+        f_n
+    );
+    let implicit = run(b, CouplingSettings::implicit(f_n, max_outer));
+    line(&implicit);
+    let explicit = run(b, CouplingSettings::explicit(f_n, relaxation, max_outer));
+    line(&explicit);
+    // the penalty is the one asked for
+    assert!(
+        (implicit.normal_penalty / (RATIO * b.young()) - 1.0).abs() < 1e-9,
+        "ε_n/E_s = {}",
+        implicit.normal_penalty / b.young()
+    );
+    let ratio = explicit.cost.outer_iterations as f64 / implicit.cost.outer_iterations as f64;
+    let dp = explicit.pressure_difference(&implicit);
+    eprintln!("  ratio {ratio:.2}, Δp {:.3e}", dp);
+    (implicit, explicit, ratio, dp)
+}
+
+/// hertz-cylinder coarse at ε_n/E_s = 1000: measured 278 implicit against
+/// 1,802 explicit outer iterations (6.5×, not the 10× asked), Δp = 0.07 %.
+#[test]
+fn hertz_cylinder_coarse_1000() {
+    let (implicit, explicit, ratio, dp) = compare(
+        Benchmark::HertzCylinderCoarse,
+        HERTZ_COARSE_BEST_RELAXATION,
+        20_000,
+    );
+    assert!(implicit.converged, "{:?}", implicit.failure);
+    assert!(explicit.converged, "{:?}", explicit.failure);
+    // measured 6.48: the implicit count grows with the penalty here (83,
+    // 93, 278 at 10, 100, 1000), so the 10× of issue 8 is not reached
+    assert!(ratio >= 6.0, "explicit/implicit outer iterations {ratio}");
+    assert!(dp < 0.005, "pressure difference {dp}");
+    // mean penetration 0.019 % of the contact cell height (thesis 0.05 %)
+    assert!(
+        implicit.relative_gap < 5e-4,
+        "gap {}",
+        implicit.relative_gap
+    );
+}
+
+/// hertz-cylinder fine (the thesis's mesh) at ε_n/E_s = 1000: the
+/// acceptance point of issue 8. Measured 122 implicit against 1,815
+/// explicit outer iterations (14.9×), Δp = 0.14 %, gap 0.040 % (thesis
+/// 60 / 2,332 / 0.05 %). About 10 s.
+#[test]
+fn hertz_cylinder_fine_1000() {
+    let (implicit, explicit, ratio, dp) = compare(
+        Benchmark::HertzCylinderFine,
+        HERTZ_FINE_BEST_RELAXATION,
+        20_000,
+    );
+    assert!(implicit.converged, "{:?}", implicit.failure);
+    assert!(explicit.converged, "{:?}", explicit.failure);
+    assert!(ratio >= 10.0, "explicit/implicit outer iterations {ratio}");
+    assert!(dp < 0.005, "pressure difference {dp}");
+    assert!(
+        implicit.relative_gap < 6e-4,
+        "gap {}",
+        implicit.relative_gap
+    );
+}
+
+/// Sphere on a rigid plane at ε_n/E_s = 1000: measured 72 implicit against
+/// 136 explicit outer iterations (1.9×), Δp = 0.05 %.
+#[test]
+fn sphere_rigid_1000() {
+    let (implicit, explicit, ratio, dp) =
+        compare(Benchmark::SphereRigid, SPHERE_RIGID_BEST_RELAXATION, 3_000);
+    assert!(implicit.converged, "{:?}", implicit.failure);
+    assert!(explicit.converged, "{:?}", explicit.failure);
+    // the implicit count does not grow with the penalty here (68, 67, 72 at
+    // 10, 100, 1000, as in thesis Table 4.5: 58, 60, 61), but the optimally
+    // relaxed explicit coupling converges in 136: 1.9×, not 10×
+    assert!(implicit.cost.outer_iterations <= 90);
+    assert!(ratio >= 1.7, "explicit/implicit outer iterations {ratio}");
+    assert!(dp < 0.005, "pressure difference {dp}");
+    assert!(
+        implicit.relative_gap < 0.006,
+        "gap {}",
+        implicit.relative_gap
+    );
+}
+
+/// The acceptance point on two deformable bodies. Fails today: implicit
+/// coupling diverges in the first outer iterations and then stalls
+/// (residual 1.9e-2 after 5,000 outer iterations at f_n = 33.5). Run with
+/// `cargo test --release -p validation --test implicit_efficiency -- --ignored concentric`.
+#[test]
+#[ignore = "fails: implicit coupling of two deformable bodies diverges at ε_n/E_s = 1000 (issue 8)"]
+fn concentric_cylinders_1000() {
+    let b = Benchmark::ConcentricCylinders;
+    let cal = calibrate(b);
+    let implicit = run(
+        b,
+        CouplingSettings::implicit(cal.penalty_scale(RATIO), 5_000),
+    );
+    line(&implicit);
+    assert!(implicit.converged, "{:?}", implicit.failure);
+    assert!(implicit.cost.outer_iterations <= 2_000);
+}
+
+/// The sweep behind the tables: FVC_CASE = coarse | fine | rigid | block |
+/// tubes, FVC_RATIO (default 1000), FVC_RELAX = comma-separated
+/// relaxations (default: 0.1·10/ratio × 0.25 … 4), FVC_CAP (default 20000).
+/// `cargo test --release -p validation --test implicit_efficiency -- --ignored probe --nocapture`
+#[test]
+#[ignore = "sweep (minutes per case); prints the table rows"]
+fn probe() {
+    let b = match std::env::var("FVC_CASE").as_deref() {
+        Ok("fine") => Benchmark::HertzCylinderFine,
+        Ok("rigid") => Benchmark::SphereRigid,
+        Ok("block") => Benchmark::SphereBlock,
+        Ok("tubes") => Benchmark::ConcentricCylinders,
+        _ => Benchmark::HertzCylinderCoarse,
+    };
+    let cal = calibrate(b);
+    eprintln!(
+        "{}: ε_n(1) = {:.4e} Pa/m, K/E = {:.4}, ℓ̄ = {:.4e} m",
+        b.name(),
+        cal.unit_penalty,
+        cal.stiffness_ratio,
+        cal.cell_height()
+    );
+    let ratio: f64 = std::env::var("FVC_RATIO")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(RATIO);
+    let rel: Vec<f64> = match std::env::var("FVC_RELAX") {
+        Ok(s) => s.split(',').filter_map(|x| x.parse().ok()).collect(),
+        Err(_) => [0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0, 4.0]
+            .iter()
+            .map(|k| (k * 0.1 * 10.0 / ratio).min(1.0))
+            .collect(),
+    };
+    let cap: usize = std::env::var("FVC_CAP")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(20_000);
+    let row = sweep(&cal, ratio, &rel, cap, line);
+    eprintln!("ε_n/E_s = {ratio}, f_n = {:.4}", row.penalty_scale);
+    for e in &row.explicit {
+        eprintln!(
+            "  r {:.4}: {} outer ({}), Δp vs implicit {:.3e}, gap {:.4} %",
+            e.settings.relaxation,
+            e.cost.outer_iterations,
+            if e.converged {
+                "converged"
+            } else {
+                "not converged"
+            },
+            e.pressure_difference(&row.implicit),
+            100.0 * e.relative_gap
+        );
+    }
+    if let Some(best) = row.best_explicit() {
+        eprintln!(
+            "best explicit r = {}, {} outer against {} implicit: ratio {:.2}, Δp {:.3e}",
+            best.settings.relaxation,
+            best.cost.outer_iterations,
+            row.implicit.cost.outer_iterations,
+            best.cost.outer_iterations as f64 / row.implicit.cost.outer_iterations as f64,
+            best.pressure_difference(&row.implicit)
+        );
+    }
+}

@@ -138,6 +138,16 @@ pub struct SolidMomentum {
     /// Normal derivative n·∇u on traction faces (eq. 3.22), per boundary
     /// face (of Δu under the updated Lagrangian form).
     pub snd_b: Vec<Vector>,
+    /// Updated Lagrangian only, per boundary face with a traction-type
+    /// condition: the face traction carried over from earlier increments
+    /// that the owner cell's committed stress does not reproduce (a face's
+    /// stress differs from its cell-centre value where the stress varies).
+    /// Without it, eq. 3.23 would re-impose that difference as a normal
+    /// derivative of *every* increment, and the boundary points would creep
+    /// by g·d_n per increment at constant load (measured: a block dragged
+    /// 10 m under a constant shear traction, its loaded face's lag grew by
+    /// 1.5e-4 m per increment).
+    traction_offset: Vec<Vector>,
     /// u, u_b and n·∇u at the start of the current attempt of an increment
     /// (to redo it with a smaller step, [`Self::restore_start`]).
     saved: (Vec<Vector>, Vec<Vector>, Vec<Vector>),
@@ -190,6 +200,7 @@ impl SolidMomentum {
             du: vec![Vector::zeros(); ul_len(nc)],
             du_b: vec![Vector::zeros(); ul_len(nb)],
             snd_b: vec![Vector::zeros(); nb],
+            traction_offset: vec![Vector::zeros(); ul_len(nb)],
             saved: (
                 vec![Vector::zeros(); nc],
                 vec![Vector::zeros(); nb],
@@ -244,6 +255,74 @@ impl SolidMomentum {
     #[inline]
     fn old(&self, i: usize) -> Vector {
         self.u_old.get(i).copied().unwrap_or_else(Vector::zeros)
+    }
+
+    /// [`Self::traction_offset`] of boundary face `b` carried by the
+    /// increment's deformation gradient `f = I + ∇Δuᵀ` at the face (it turns
+    /// with the material; zero in small strain).
+    fn offset_at(&self, b: usize, grad_b: &Tensor) -> Vector {
+        match self.traction_offset.get(b) {
+            Some(m) => m + grad_b.transpose() * m,
+            None => Vector::zeros(),
+        }
+    }
+
+    fn has_traction_condition(cond: &PatchCondition) -> bool {
+        matches!(
+            cond,
+            PatchCondition::Traction(_)
+                | PatchCondition::Pressure(_)
+                | PatchCondition::LinearisedContact(_)
+        )
+    }
+
+    /// Updated Lagrangian, first half of carrying the face tractions over
+    /// to the next increment (see [`Self::traction_offset`]); call on the
+    /// converged increment *before* the mesh moves: stores the converged
+    /// face traction per current area, `(n·σ̂_b + offset)/ratio`.
+    pub fn hold_face_tractions(&mut self, mesh: &PolyMesh, geom: &MeshGeometry) {
+        if self.traction_offset.is_empty() {
+            return;
+        }
+        let ni = mesh.n_internal_faces();
+        for (p, cond) in mesh.patches.iter().zip(&self.conditions) {
+            if !Self::has_traction_condition(cond) {
+                continue;
+            }
+            for f in p.faces() {
+                let (b, o, n) = (f - ni, mesh.owner[f] as usize, geom.face_normals[f]);
+                let gp = self.grad_u[o];
+                let g = self.snd_b[b];
+                let grad_b = gp + n * (g - gp.transpose() * n).transpose();
+                let (t_b, ratio) = self.face_traction(o, &grad_b, &n);
+                let t = (t_b + self.offset_at(b, &grad_b)) / ratio;
+                self.traction_offset[b] = if t.iter().all(|v| v.is_finite()) {
+                    t
+                } else {
+                    Vector::zeros()
+                };
+            }
+        }
+    }
+
+    /// Second half, after [`Self::commit_increment`] and the geometry
+    /// update: the offset becomes the held traction minus what the newly
+    /// committed owner stress gives on the moved face.
+    pub fn carry_face_tractions(&mut self, mesh: &PolyMesh, geom: &MeshGeometry) {
+        if self.traction_offset.is_empty() {
+            return;
+        }
+        let ni = mesh.n_internal_faces();
+        for (p, cond) in mesh.patches.iter().zip(&self.conditions) {
+            if !Self::has_traction_condition(cond) {
+                continue;
+            }
+            for f in p.faces() {
+                let (b, o, n) = (f - ni, mesh.owner[f] as usize, geom.face_normals[f]);
+                let (t_c, _) = self.face_traction(o, &Tensor::zeros(), &n);
+                self.traction_offset[b] -= t_c;
+            }
+        }
     }
 
     /// End of a converged increment of the updated Lagrangian form, after
@@ -402,7 +481,9 @@ impl SolidMomentum {
                     PatchCondition::Traction(t) => {
                         // g_b ← g_b + (t − n·σ̂_b)/K   (3.22–3.23)
                         let g = self.snd_b[b];
-                        let (t_b, ratio) = self.face_traction(o, &grad_at(&g), &n);
+                        let grad_b = grad_at(&g);
+                        let (t_b, ratio) = self.face_traction(o, &grad_b, &n);
+                        let t_b = t_b + self.offset_at(b, &grad_b);
                         let g_new = g + (t[f - p.start] * ratio - t_b) / self.k;
                         self.snd_b[b] = g_new;
                         extrapolated + g_new * self.dn[f]
@@ -411,6 +492,7 @@ impl SolidMomentum {
                         let g = self.snd_b[b];
                         let grad_b = grad_at(&g);
                         let (t_b, _) = self.face_traction(o, &grad_b, &n);
+                        let t_b = t_b + self.offset_at(b, &grad_b);
                         let ul = self.law.is_updated_lagrangian();
                         let target = -current_area_vector(ul, &grad_b, &n) * pr[f - p.start];
                         let g_new = g + (target - t_b) / self.k;
@@ -438,7 +520,9 @@ impl SolidMomentum {
                         // (I + s N) g = g + (t* − ε β N (u_extr − u_b*) − n·σ_b)/K
                         let i = f - p.start;
                         let g = self.snd_b[b];
-                        let (t_b, ratio) = self.face_traction(o, &grad_at(&g), &n);
+                        let grad_b = grad_at(&g);
+                        let (t_b, ratio) = self.face_traction(o, &grad_b, &n);
+                        let t_b = t_b + self.offset_at(b, &grad_b);
                         let t_extr = lc.traction_at(i, &extrapolated) * ratio;
                         let r = g + (t_extr - t_b) / self.k;
                         let g_new = lc.solve_normal_derivative(i, self.dn[f] / self.k, &r);

@@ -210,6 +210,7 @@ impl Body {
             return Ok(());
         }
         if let Some(op) = &mut self.mesh_motion {
+            self.momentum.hold_face_tractions(&self.mesh, &self.geom);
             let (du, du_b) = self.momentum.increment();
             op.interpolate(du, du_b, &mut self.point_du);
             for (x, d) in self.mesh.points.iter_mut().zip(&self.point_du) {
@@ -228,6 +229,9 @@ impl Body {
             self.momentum.update_geometry(&self.mesh, &self.geom);
         }
         self.momentum.commit_increment();
+        if self.mesh_motion.is_some() {
+            self.momentum.carry_face_tractions(&self.mesh, &self.geom);
+        }
         Ok(())
     }
 

@@ -10,6 +10,10 @@
 //! eqs. 4.40, 4.46). The 3D solver's outer loop adds its deferred
 //! corrections on top of this; here the cell equations are solved exactly,
 //! as in the thesis, so the iteration history is the printed one.
+
+/// Implicit against tuned explicit coupling on the 3D benchmarks (thesis
+/// tables 4.5–4.7); in this test binary to keep CI from linking another.
+mod implicit_efficiency;
 use fv_discretise::LinearisedContact;
 use fv_mesh::Vector;
 use nalgebra::{DMatrix, DVector};

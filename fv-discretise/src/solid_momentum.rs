@@ -276,53 +276,54 @@ impl SolidMomentum {
         )
     }
 
+    /// Sets the traction offset of every face with a traction-type
+    /// condition to `value(self, b, owner, n)` (boundary face `b`).
+    fn set_traction_offsets(
+        &mut self,
+        mesh: &PolyMesh,
+        geom: &MeshGeometry,
+        value: impl Fn(&Self, usize, usize, &Vector) -> Vector,
+    ) {
+        if self.traction_offset.is_empty() {
+            return;
+        }
+        let ni = mesh.n_internal_faces();
+        for (pi, p) in mesh.patches.iter().enumerate() {
+            if !Self::has_traction_condition(&self.conditions[pi]) {
+                continue;
+            }
+            for f in p.faces() {
+                let n = geom.face_normals[f];
+                let v = value(self, f - ni, mesh.owner[f] as usize, &n);
+                self.traction_offset[f - ni] = v;
+            }
+        }
+    }
+
     /// Updated Lagrangian, first half of carrying the face tractions over
     /// to the next increment (see [`Self::traction_offset`]); call on the
     /// converged increment *before* the mesh moves: stores the converged
     /// face traction per current area, `(n·σ̂_b + offset)/ratio`.
     pub fn hold_face_tractions(&mut self, mesh: &PolyMesh, geom: &MeshGeometry) {
-        if self.traction_offset.is_empty() {
-            return;
-        }
-        let ni = mesh.n_internal_faces();
-        for (p, cond) in mesh.patches.iter().zip(&self.conditions) {
-            if !Self::has_traction_condition(cond) {
-                continue;
+        self.set_traction_offsets(mesh, geom, |m, b, o, n| {
+            let grad_b = face_gradient(&m.grad_u[o], n, &m.snd_b[b]);
+            let (t_b, ratio) = m.face_traction(o, &grad_b, n);
+            let t = (t_b + m.offset_at(b, &grad_b)) / ratio;
+            if t.iter().all(|v| v.is_finite()) {
+                t
+            } else {
+                Vector::zeros()
             }
-            for f in p.faces() {
-                let (b, o, n) = (f - ni, mesh.owner[f] as usize, geom.face_normals[f]);
-                let gp = self.grad_u[o];
-                let g = self.snd_b[b];
-                let grad_b = gp + n * (g - gp.transpose() * n).transpose();
-                let (t_b, ratio) = self.face_traction(o, &grad_b, &n);
-                let t = (t_b + self.offset_at(b, &grad_b)) / ratio;
-                self.traction_offset[b] = if t.iter().all(|v| v.is_finite()) {
-                    t
-                } else {
-                    Vector::zeros()
-                };
-            }
-        }
+        });
     }
 
     /// Second half, after [`Self::commit_increment`] and the geometry
     /// update: the offset becomes the held traction minus what the newly
     /// committed owner stress gives on the moved face.
     pub fn carry_face_tractions(&mut self, mesh: &PolyMesh, geom: &MeshGeometry) {
-        if self.traction_offset.is_empty() {
-            return;
-        }
-        let ni = mesh.n_internal_faces();
-        for (p, cond) in mesh.patches.iter().zip(&self.conditions) {
-            if !Self::has_traction_condition(cond) {
-                continue;
-            }
-            for f in p.faces() {
-                let (b, o, n) = (f - ni, mesh.owner[f] as usize, geom.face_normals[f]);
-                let (t_c, _) = self.face_traction(o, &Tensor::zeros(), &n);
-                self.traction_offset[b] -= t_c;
-            }
-        }
+        self.set_traction_offsets(mesh, geom, |m, b, o, n| {
+            m.traction_offset[b] - m.face_traction(o, &Tensor::zeros(), n).0
+        });
     }
 
     /// End of a converged increment of the updated Lagrangian form, after
@@ -475,7 +476,7 @@ impl SolidMomentum {
                 let base = self.u_b_old.get(b).copied().unwrap_or_else(Vector::zeros);
                 // total displacement extrapolated from the owner along k_b
                 let extrapolated = base + (self.u[o] - self.old(o)) + gp.transpose() * self.kb[b];
-                let grad_at = |g: &Vector| gp + n * (g - gp.transpose() * n).transpose();
+                let grad_at = |g: &Vector| face_gradient(&gp, &n, g);
                 let u_b = match cond {
                     PatchCondition::Displacement(v) => v[f - p.start],
                     PatchCondition::Traction(t) => {
@@ -733,4 +734,10 @@ impl SolidMomentum {
             .map(|f| self.face_force[f - ni])
             .sum()
     }
+}
+
+/// The owner's gradient `gp` with its normal part replaced by the boundary
+/// normal derivative `g` (eq. 3.23): `gp + n (g − gpᵀn)ᵀ`.
+fn face_gradient(gp: &Tensor, n: &Vector, g: &Vector) -> Tensor {
+    gp + n * (g - gp.transpose() * n).transpose()
 }

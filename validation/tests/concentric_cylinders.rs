@@ -1,7 +1,25 @@
 //! concentric-cylinders (thesis §4.4.1, `../shared/benchmarks/README.md`):
 //! mean interface pressure against Lamé (0.3469 p) with either tube as
 //! master, and the pressure oscillation of the non-conformal interface.
-use validation::benchmarks::concentric_cylinders::{lame_interface_pressure, run};
+use validation::benchmarks::concentric_cylinders::{
+    lame_interface_pressure, run, ConcentricCylinders,
+};
+
+/// Runs the case and prints its figures against Lamé's `exact` pressure.
+fn run_reported(algorithm: &'static str, swapped: bool, exact: f64) -> ConcentricCylinders {
+    let r = run(algorithm, swapped);
+    eprintln!(
+        "{algorithm} inner-master={swapped}: mean p/p_Lamé inner {:.4} outer {:.4}, oscillation inner {:.3} outer {:.3}, {} outer iterations, {:.2} s, {:.3} µs/cell/iter",
+        r.inner.mean / exact,
+        r.outer.mean / exact,
+        r.inner.oscillation,
+        r.outer.oscillation,
+        r.cost.outer_iterations,
+        r.cost.wall_seconds,
+        r.cost.us_per_cell_iteration()
+    );
+    r
+}
 
 #[test]
 fn mean_interface_pressure_within_one_percent_of_lame_either_side_master() {
@@ -10,17 +28,7 @@ fn mean_interface_pressure_within_one_percent_of_lame_either_side_master() {
     let mut oscillation = Vec::new();
     for algorithm in ["segment-to-segment", "pointwise"] {
         for swapped in [false, true] {
-            let r = run(algorithm, swapped);
-            eprintln!(
-                "{algorithm} inner-master={swapped}: mean p/p_Lamé inner {:.4} outer {:.4}, oscillation inner {:.3} outer {:.3}, {} outer iterations, {:.2} s, {:.3} µs/cell/iter",
-                r.inner.mean / exact,
-                r.outer.mean / exact,
-                r.inner.oscillation,
-                r.outer.oscillation,
-                r.cost.outer_iterations,
-                r.cost.wall_seconds,
-                r.cost.us_per_cell_iteration()
-            );
+            let r = run_reported(algorithm, swapped, exact);
             assert!(r.converged, "{algorithm} {swapped}");
             if algorithm == "segment-to-segment" {
                 for side in [r.inner, r.outer] {
@@ -54,17 +62,7 @@ fn mean_interface_pressure_within_one_percent_of_lame_either_side_master() {
 fn nagata_master_with_symmetry_planes() {
     let exact = lame_interface_pressure();
     for swapped in [false, true] {
-        let r = run("segment-to-segment-nagata", swapped);
-        eprintln!(
-            "segment-to-segment-nagata inner-master={swapped}: mean p/p_Lamé inner {:.4} outer {:.4}, oscillation inner {:.3} outer {:.3}, {} outer iterations, {:.2} s, {:.3} µs/cell/iter",
-            r.inner.mean / exact,
-            r.outer.mean / exact,
-            r.inner.oscillation,
-            r.outer.oscillation,
-            r.cost.outer_iterations,
-            r.cost.wall_seconds,
-            r.cost.us_per_cell_iteration()
-        );
+        let r = run_reported("segment-to-segment-nagata", swapped, exact);
         assert!(r.converged, "{swapped}");
         for side in [r.inner, r.outer] {
             assert!(

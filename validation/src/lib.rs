@@ -144,3 +144,25 @@ pub fn run_toml_with_history(text: &str) -> (RunOutcome, HistoryTable) {
 }
 
 static HISTORY_RUNS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+
+/// Mean over the faces of patch `patch` of `value(boundary face index,
+/// face index)` (e.g. the boundary displacement `u_b[b]` or the face centre
+/// `geom.face_centres[f]`). Panics if the body has no such patch (a test
+/// set-up error).
+pub fn patch_mean(
+    body: &solver_app::model::Body,
+    patch: &str,
+    value: impl Fn(usize, usize) -> nalgebra::Vector3<f64>,
+) -> nalgebra::Vector3<f64> {
+    let pi = body
+        .mesh
+        .patch_index(patch)
+        .unwrap_or_else(|| panic!("no patch '{patch}'"));
+    let ni = body.mesh.n_internal_faces();
+    let faces = body.mesh.patches[pi].faces();
+    let n = faces.len() as f64;
+    faces
+        .map(|f| value(f - ni, f))
+        .sum::<nalgebra::Vector3<f64>>()
+        / n
+}

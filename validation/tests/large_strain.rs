@@ -10,7 +10,7 @@ use fv_materials::{Hardening, LargeStrainMaterial, NeoHookeanPlastic, PointState
 use validation::analytical::{
     elastica_cantilever_tip, neo_hookean_simple_shear, neo_hookean_uniaxial,
 };
-use validation::{run_toml, run_toml_with_history};
+use validation::{patch_mean, run_toml, run_toml_with_history};
 
 const E: f64 = 1000.0;
 const NU: f64 = 0.3;
@@ -245,14 +245,7 @@ fn cantilever_tip(strain: &str, traction: f64, steps: usize) -> (f64, f64, usize
     let out = run_toml(&case, std::path::Path::new("."));
     assert!(out.converged, "{:?}", out.failure);
     let b = &out.bodies[0];
-    let pi = b.mesh.patch_index("xmax").unwrap();
-    let ni = b.mesh.n_internal_faces();
-    let faces = b.mesh.patches[pi].faces();
-    let n = faces.len() as f64;
-    let tip: nalgebra::Vector3<f64> = faces
-        .map(|f| b.momentum.u_b[f - ni])
-        .sum::<nalgebra::Vector3<f64>>()
-        / n;
+    let tip = patch_mean(b, "xmax", |bf, _| b.momentum.u_b[bf]);
     (-tip.x / 10.0, -tip.y / 10.0, out.summary.outer_iterations)
 }
 
@@ -356,15 +349,7 @@ value = [-0.05, 0, 0]
         let out = run_toml(&case, std::path::Path::new("."));
         assert!(out.converged, "{steps}: {:?}", out.failure);
         let b = &out.bodies[0];
-        let mean = |patch: &str| {
-            let pi = b.mesh.patch_index(patch).unwrap();
-            let faces = b.mesh.patches[pi].faces();
-            let n = faces.len() as f64;
-            faces
-                .map(|f| b.geom.face_centres[f])
-                .sum::<nalgebra::Vector3<f64>>()
-                / n
-        };
+        let mean = |patch: &str| patch_mean(b, patch, |_, f| b.geom.face_centres[f]);
         let (top, bottom) = (mean("ymax"), mean("ymin"));
         (top.x - bottom.x, bottom.y)
     };

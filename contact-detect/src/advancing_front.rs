@@ -49,7 +49,7 @@ use fv_mesh::Surface;
 /// no master face are found separately by seed searches. A sheet reached
 /// by no chain (say a second sheet under master faces that already see a
 /// first one) can be missed: the limitation the thesis accepts for
-/// Algorithm 2. The property tests (`tests/pair_sets.rs`) check the
+/// Algorithm 2. The property tests (`tests/suite/pair_sets.rs`) check the
 /// equality on random perturbed, rotated, tilted and curved grids of
 /// quadrilaterals and triangles.
 ///

@@ -27,7 +27,7 @@ use fv_mesh::Vector;
 use std::hint::black_box;
 use std::time::Duration;
 
-#[path = "../tests/common/mod.rs"]
+#[path = "../tests/suite/common/mod.rs"]
 mod common;
 use common::{cube_sphere, geodesic_sphere, Lcg, Mesh};
 

@@ -17,7 +17,7 @@
 //! are only O(h) on irregular meshes unless the surface is a sphere (Max's
 //! weighting). Measured on the 780-triangle half-tube of §4.6.1: the largest
 //! radial error of the Nagata surface drops from 3.0·10⁻³ to 2·10⁻⁴ m
-//! (`tests/accuracy.rs`).
+//! (`tests/suite/accuracy.rs`).
 //!
 //! Only points whose faces close around them are fitted; on the border of
 //! the surface the weighted average is kept (a one-sided stencil is no

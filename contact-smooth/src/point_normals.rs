@@ -13,7 +13,7 @@
 //! face normals are [`PointNormalParams::thesis`]. Measured on spheres
 //! meshed irregularly, equal weights give first-order normals and a
 //! second-order Nagata surface, the default fourth order
-//! (`tests/accuracy.rs`).
+//! (`tests/suite/accuracy.rs`).
 //!
 //! Then two corrections (Fig. 4.40):
 //!
@@ -222,7 +222,7 @@ impl Default for PointNormalParams {
     /// Not the thesis's choice ([`PointNormalParams::thesis`]): on spheres
     /// meshed with irregular triangles or quadrilaterals, equally weighted
     /// face normals are only first-order accurate, which limits the Nagata
-    /// surface to second order (measured in `tests/accuracy.rs`), while
+    /// surface to second order (measured in `tests/suite/accuracy.rs`), while
     /// this default gives exact normals on a sphere and fourth order.
     fn default() -> Self {
         PointNormalParams {

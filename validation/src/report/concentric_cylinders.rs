@@ -35,7 +35,7 @@ fn master(swapped: bool) -> &'static str {
 }
 
 /// Whether this run's figures are held to the limits (the benchmark and
-/// `validation/tests/concentric_cylinders.rs` check segment-to-segment).
+/// `validation/tests/cases/concentric_cylinders.rs` check segment-to-segment).
 fn checked(algorithm: &str) -> bool {
     algorithm == "segment-to-segment"
 }
@@ -279,7 +279,7 @@ impl Section for ConcentricCylindersSection {
         }
         md.push_str(&format!(
             "Acceptance limits (benchmark table; segment-to-segment, as \
-             `validation/tests/concentric_cylinders.rs`; pointwise is reported only): mean \
+             `validation/tests/cases/concentric_cylinders.rs`; pointwise is reported only): mean \
              interface pressure within {:.0} % of Lamé on both surfaces with either master; \
              oscillation amplitude the same within {:.0} % whichever side is master.\n\n",
             100.0 * MEAN_LIMIT,

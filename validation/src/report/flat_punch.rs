@@ -37,7 +37,7 @@ fn master(swapped: bool) -> &'static str {
     }
 }
 
-/// max |w/w_A22 − 1| for 1.2 b < x < 5 b (as `validation/tests/flat_punch.rs`).
+/// max |w/w_A22 − 1| for 1.2 b < x < 5 b (as `validation/tests/cases/flat_punch.rs`).
 fn settlement_error(r: &FlatPunch) -> f64 {
     r.settlement
         .iter()
@@ -272,7 +272,7 @@ impl Section for FlatPunchSection {
         md.push_str(&format!(
             "Acceptance limits: pressure within {:.0} % of A20 for |x| ≤ 0.8 b (benchmark \
              table); force within {:.0} % of the half-space's A21 and settlement shape within \
-             {:.0} % of A22 for 1.2 b < x < 5 b (as `validation/tests/flat_punch.rs`: the \
+             {:.0} % of A22 for 1.2 b < x < 5 b (as `validation/tests/cases/flat_punch.rs`: the \
              block is finite, A21 and A22 are for a half-space; the benchmark table asks 3 % \
              for the settlement); force with master and slave swapped within {:.0} %.\n\n",
             100.0 * PRESSURE_LIMIT,

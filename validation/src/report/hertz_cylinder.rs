@@ -11,7 +11,7 @@ use crate::benchmarks::hertz_cylinder::{run, HertzCylinder, POISSON, RADIUS, YOU
 pub struct HertzCylinderSection;
 
 /// Acceptance limits of one mesh (`../shared/benchmarks/README.md`, and the
-/// test `validation/tests/hertz_cylinder.rs`).
+/// test `validation/tests/cases/hertz_cylinder.rs`).
 #[derive(Debug, Clone, Copy)]
 struct Limits {
     /// |peak p / p0 − 1|.
@@ -31,7 +31,7 @@ const MESHES: [(&str, &str, Limits); 2] = [
         Limits {
             peak: 0.05,
             rms: 0.05,
-            // as validation/tests/hertz_cylinder.rs: 5.0 % at the shallowest
+            // as validation/tests/cases/hertz_cylinder.rs: 5.0 % at the shallowest
             // coarse cell (finite-body offset plus the coarse gradient)
             axis: 0.06,
             swap: 0.01,
@@ -447,7 +447,7 @@ impl Section for HertzCylinderSection {
              below Hertz's half-space at every depth: the finite half-cylinder adds a \
              near-uniform horizontal tension of order F/(πR) ≈ 1.7 % p₀ (diametral \
              compression) that the half-space solution lacks, so the fine-mesh check here and \
-             in `validation/tests/hertz_cylinder.rs` uses 4 %.\n\n",
+             in `validation/tests/cases/hertz_cylinder.rs` uses 4 %.\n\n",
         );
         if !swap_rows.is_empty() {
             md.push_str("Master and slave swapped, normal force:\n\n");

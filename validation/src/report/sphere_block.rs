@@ -327,7 +327,7 @@ impl Section for SphereBlockSection {
         md.push_str(
             "With the deformable block, σ_rr on the sphere's axis lies 3–4 % p₀ more \
              compressive than A19 over 0 < z < b (the rigid-block run is within 2.2 %), so \
-             `validation/tests/sphere_block.rs` asserts it at 4.5 %; the block's axis cells \
+             `validation/tests/cases/sphere_block.rs` asserts it at 4.5 %; the block's axis cells \
              (centres 0.7 h off the axis, ν_b) are reported only.\n\n",
         );
         if !swap_rows.is_empty() {

@@ -14,7 +14,7 @@
 //! best count so far is not listed.
 //!
 //! Measured (2 cores, release; `cargo test --release -p validation --test
-//! implicit_bar -- --ignored probe --nocapture` with FVC_CASE,
+//! cases implicit_bar:: -- --ignored probe --nocapture` with FVC_CASE,
 //! FVC_RATIO, FVC_RELAX, FVC_CAP):
 //!
 //! hertz-cylinder coarse (1,615 cells): ε_n(1) = 3.109e3 Pa/m, ℓ̄ = 0.0866 m
@@ -228,7 +228,7 @@ fn sphere_rigid_1000() {
 /// The acceptance point on two deformable bodies. Fails today: implicit
 /// coupling diverges in the first outer iterations and then stalls
 /// (residual 1.9e-2 after 5,000 outer iterations at f_n = 33.5). Run with
-/// `cargo test --release -p validation --test implicit_bar -- --ignored concentric`.
+/// `cargo test --release -p validation --test cases implicit_bar:: -- --ignored concentric`.
 #[test]
 #[ignore = "fails: implicit coupling of two deformable bodies diverges at ε_n/E_s = 1000 (issue 8)"]
 fn concentric_cylinders_1000() {
@@ -246,7 +246,7 @@ fn concentric_cylinders_1000() {
 /// The sweep behind the tables: FVC_CASE = coarse | fine | rigid | block |
 /// tubes, FVC_RATIO (default 1000), FVC_RELAX = comma-separated
 /// relaxations (default: 0.1·10/ratio × 0.25 … 4), FVC_CAP (default 20000).
-/// `cargo test --release -p validation --test implicit_bar -- --ignored probe --nocapture`
+/// `cargo test --release -p validation --test cases implicit_bar:: -- --ignored probe --nocapture`
 #[test]
 #[ignore = "sweep (minutes per case); prints the table rows"]
 fn probe() {

@@ -2,8 +2,7 @@
 //! tangential penalty × slip), slip (|t_t| = μ p), both opposing the slip,
 //! on both surfaces; slip interpolated by barycentric coordinates (4.26);
 //! increments and slip history.
-mod common;
-use common::{close, deform, lower, upper};
+use crate::common::{close, deform, lower, upper};
 use contact_force::{
     all_pairs, ContactAlgorithm, ContactAlgorithmKind, ContactLaw, ContactTractions, FrictionState,
     SegmentToSegment, SlipHistory,

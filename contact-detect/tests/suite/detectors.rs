@@ -1,7 +1,6 @@
 //! Deterministic scenarios: all detectors agree, and the pair definition
 //! behaves as documented on simple geometries.
-mod common;
-use common::{Patch, Placement};
+use crate::common::{Patch, Placement};
 use contact_detect::{
     AdvancingFront, BruteForce, BvhDetector, CandidatePairs, DetectError, DetectParams,
     DetectionMethod, Detector,

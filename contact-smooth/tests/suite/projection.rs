@@ -17,8 +17,7 @@
 //! of the analytic foot (its tangential offset comes from the tilt of the
 //! patch normal). Points at radius 0.3–5 converge in at most 4 updates.
 //! The same foot is found among the faces around the nearest point's faces.
-mod common;
-use common::*;
+use crate::common::*;
 use contact_smooth::{NagataSurface, PatchRef, SmoothingOptions, SurfaceProjection};
 use fv_mesh::{Real, Vector};
 

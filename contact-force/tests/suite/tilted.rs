@@ -2,8 +2,7 @@
 //! pressure ε_n ⟨−g⟩ is piecewise linear, and the segment-to-segment
 //! algorithm integrates it exactly on every face of both sides (partial
 //! contact included, step c*).
-mod common;
-use common::{close, deform, law, lower, upper, x_range};
+use crate::common::{close, deform, law, lower, upper, x_range};
 use contact_force::{
     all_pairs, swap_pairs, ContactAlgorithm, ContactTractions, Pointwise, SegmentToSegment,
 };

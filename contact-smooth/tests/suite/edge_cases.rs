@@ -19,8 +19,7 @@
 //! * plate joined tangentially to a cylinder: junction normal error 0.10
 //!   without the transition correction, 0 with it; position error next to
 //!   the junction 5.5e-3 → 3.1e-5.
-mod common;
-use common::*;
+use crate::common::*;
 use contact_smooth::{
     curvature_parameter, EdgeCurve, EdgeCurveParams, NagataPatch, NagataSurface, NormalWeighting,
     PatchKind, PatchRef, PointNormalParams, QuadPatch, SmoothError, SmoothingOptions,

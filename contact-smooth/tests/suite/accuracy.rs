@@ -23,8 +23,7 @@
 //! coarser than 1/50 allows. With the thesis's equally weighted face normals
 //! the error is limited by first-order normals (see
 //! `thesis_weighting_is_limited_by_the_normals`).
-mod common;
-use common::*;
+use crate::common::*;
 use contact_smooth::{
     NagataPatch, NagataSurface, NormalFit, PatchRef, PointNormalParams, SmoothingOptions,
 };

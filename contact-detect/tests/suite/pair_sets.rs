@@ -3,8 +3,7 @@
 //! equals brute force, and no pair whose projected polygons truly
 //! intersect (exact convex clipping, computed here independently) within
 //! the detection band is missed.
-mod common;
-use common::{Patch, Placement};
+use crate::common::{Patch, Placement};
 use contact_detect::{
     AdvancingFront, BruteForce, BvhDetector, CandidatePairs, DetectParams, Detector,
 };

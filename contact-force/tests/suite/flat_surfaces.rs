@@ -1,8 +1,7 @@
 //! Two flat parallel squares: uniform penetration, partial overlap,
 //! conforming and non-conforming meshes, master/slave swap, pointwise vs
 //! segment-to-segment, and the pairs of the detection crate.
-mod common;
-use common::{close, law, lower, upper};
+use crate::common::{close, law, lower, upper};
 use contact_detect::{BruteForce, CandidatePairs, DetectParams, Detector};
 use contact_force::{
     all_pairs, swap_pairs, ContactAlgorithm, ContactAlgorithmKind, ContactStats, ContactTractions,

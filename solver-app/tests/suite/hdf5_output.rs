@@ -4,7 +4,7 @@
 //! checked as XML whose every DataItem resolves to a dataset of the stated
 //! size; polyhedral cells; crash safety (forgotten writer, SIGKILL).
 //!
-//! `FVC_KEEP_OUTPUT=DIR cargo test --release -p solver-app --test hdf5_output`
+//! `FVC_KEEP_OUTPUT=DIR cargo test --release -p solver-app --test suite hdf5_output::`
 //! keeps the files (DIR/two-body/two-body.{h5,xdmf}, DIR/poly/poly.{h5,xdmf})
 //! for `scripts/check_h5.py` and `scripts/paraview_check.py`.
 
@@ -954,7 +954,7 @@ fn sigkill_after_k_increments_leaves_k_readable() {
     let mut child = Command::new(std::env::current_exe().unwrap())
         .args([
             "--exact",
-            "sigkill_child",
+            "hdf5_output::sigkill_child",
             "--nocapture",
             "--test-threads=1",
         ])

@@ -1,7 +1,6 @@
 //! Degenerate input: no panic, no traction where there is no contact, errors
 //! only for inconsistent input.
-mod common;
-use common::{close, law, lower, upper};
+use crate::common::{close, law, lower, upper};
 use contact_detect::CandidatePairs;
 use contact_force::{
     all_pairs, ContactAlgorithmKind, ContactError, ContactLaw, ContactTractions, SlipHistory,

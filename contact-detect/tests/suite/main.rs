@@ -1,0 +1,6 @@
+//! The crate's integration tests in one test binary (each release test
+//! binary costs CI seconds of linking); one module per former file.
+
+mod common;
+mod detectors;
+mod pair_sets;

@@ -1,0 +1,25 @@
+//! The validation cases, one module per benchmark, in one test binary:
+//! each release test binary costs CI about 30–45 s of thin-LTO linking, so
+//! the cases share one. Run one case with
+//! `cargo test --release -p validation --test cases <module>:: -- --nocapture`.
+
+mod block_in_half_tube;
+mod cantilever;
+mod concentric_cylinders;
+mod contact_patch;
+mod dynamics;
+mod flat_punch;
+mod force_control;
+mod hertz_cylinder;
+mod hertz_sphere;
+mod implicit_bar;
+mod lame_cylinder;
+mod large_strain;
+mod manufactured_solution;
+mod nafems_punch;
+mod parallel_cylinders;
+mod punch_probe;
+mod rigid_cylinder;
+mod sphere_block;
+mod twisting_blocks;
+mod uniform_stress;

@@ -32,8 +32,8 @@ pub use error::InputError;
 pub use material::{MaterialModel, MaterialSpec};
 pub use mesh::{MeshSpec, GENERATORS};
 pub use settings::{
-    Analysis, AnalysisKind, LinearMethod, LinearSettings, OnNonConvergence, OutputSettings,
-    SolverSettings, StrainKind, TimeControl,
+    Acceleration, Analysis, AnalysisKind, LinearMethod, LinearSettings, OnNonConvergence,
+    OutputSettings, SolverSettings, StrainKind, TimeControl,
 };
 pub use source::CaseSource;
 pub use values::{Rotation, ScalarValue, VectorValue};

@@ -10,6 +10,7 @@
 //! ```
 #![warn(missing_docs)]
 
+pub mod anderson;
 pub mod case;
 pub mod check;
 pub mod contact_coupling;

@@ -1,7 +1,8 @@
 //! The segregated solution procedure of thesis §3.3: one global sparse
 //! system for all deformable bodies, outer (Picard) iterations, and one
 //! linear solve per displacement component.
-use crate::case::{LinearMethod, LinearSettings, SolverSettings};
+use crate::anderson::AndersonAcceleration;
+use crate::case::{Acceleration, LinearMethod, LinearSettings, SolverSettings};
 use crate::contact_coupling::{CellSpring, ContactSet};
 use crate::model::Body;
 use fv_discretise::{CsrMatrix, FaceSlots, LinearSolver, LinearSolverError, MomentumParams};
@@ -100,6 +101,10 @@ pub struct SegregatedSolver {
     /// Value indices of the springs' entries in the current matrices.
     spring_slots: Vec<u32>,
     new_spring_slots: Vec<u32>,
+    /// Outer-iteration acceleration (`solver.acceleration = "anderson"`).
+    anderson: Option<AndersonAcceleration>,
+    /// Stacked displacement (workspace of the acceleration).
+    u_work: Vec<Vector>,
 }
 
 fn make_solver(s: &LinearSettings, n: usize) -> Box<dyn LinearSolver + Send> {
@@ -209,6 +214,16 @@ impl SegregatedSolver {
             spring_entries: Vec::new(),
             spring_slots: Vec::new(),
             new_spring_slots: Vec::new(),
+            anderson: match settings.acceleration {
+                Acceleration::None => None,
+                Acceleration::Anderson => {
+                    Some(AndersonAcceleration::new(n, settings.acceleration_depth))
+                }
+            },
+            u_work: match settings.acceleration {
+                Acceleration::None => Vec::new(),
+                Acceleration::Anderson => vec![Vector::zeros(); n],
+            },
         }
     }
 
@@ -429,6 +444,9 @@ impl SegregatedSolver {
         for b in bodies.iter().filter(|b| !b.rigid) {
             self.u_start[b.offset..b.offset + b.mesh.n_cells].copy_from_slice(&b.momentum.u);
         }
+        if let Some(a) = &mut self.anderson {
+            a.restart();
+        }
     }
 
     /// One outer iteration (thesis §3.3 i–iv): boundary values, gradient,
@@ -475,11 +493,20 @@ impl SegregatedSolver {
         let mut norm_delta = 0.0;
         let mut norm_incr = 0.0;
         let mut norm_total = 0.0;
+        if let Some(anderson) = &mut self.anderson {
+            for b in bodies.iter().filter(|b| !b.rigid) {
+                self.u_work[b.offset..b.offset + b.mesh.n_cells].copy_from_slice(&b.momentum.u);
+            }
+            anderson.step(&mut self.u_work, &self.delta, self.relaxation);
+        }
         for b in bodies.iter_mut().filter(|b| !b.rigid) {
             let off = b.offset;
             for (i, u) in b.momentum.u.iter_mut().enumerate() {
                 let d = self.delta[off + i] * self.relaxation;
-                *u += d;
+                match self.anderson {
+                    Some(_) => *u = self.u_work[off + i],
+                    None => *u += d,
+                }
                 norm_delta += d.norm_squared();
                 norm_incr += (*u - self.u_start[off + i]).norm_squared();
                 norm_total += u.norm_squared();
@@ -556,6 +583,10 @@ impl SegregatedSolver {
                 let mut reached = true;
                 for b in bodies.iter_mut().filter(|b| !b.rigid) {
                     reached &= b.correct_force_controls(solved);
+                }
+                if let (false, Some(a)) = (reached, &mut self.anderson) {
+                    // the corrected boundary displacement changes the map
+                    a.restart();
                 }
                 if !reached || residual >= self.tolerance {
                     continue;

@@ -65,6 +65,16 @@ pub enum OnNonConvergence {
     Continue,
 }
 
+/// `solver.acceleration`: how the outer iteration is accelerated.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Acceleration {
+    /// `"none"`: the thesis's under-relaxed Picard iteration.
+    None,
+    /// `"anderson"`: Anderson mixing of the last `acceleration_depth`
+    /// iterates ([`crate::anderson`]).
+    Anderson,
+}
+
 /// `solver.linear.method`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum LinearMethod {
@@ -112,6 +122,10 @@ pub struct SolverSettings {
     pub linear: LinearSettings,
     /// Rhie–Chow coefficient α_RC (>= 0, default 0.1).
     pub rhie_chow: f64,
+    /// Outer-iteration acceleration (default none).
+    pub acceleration: Acceleration,
+    /// Iterates mixed by Anderson acceleration (1–20, default 5).
+    pub acceleration_depth: usize,
 }
 
 impl Default for SolverSettings {
@@ -123,6 +137,8 @@ impl Default for SolverSettings {
             on_nonconvergence: OnNonConvergence::Abort,
             linear: LinearSettings::default(),
             rhie_chow: 0.1,
+            acceleration: Acceleration::None,
+            acceleration_depth: 5,
         }
     }
 }
@@ -231,6 +247,8 @@ pub(crate) fn solver(t: &Table<'_>) -> Res<SolverSettings> {
         "on_nonconvergence",
         "linear",
         "rhie_chow",
+        "acceleration",
+        "acceleration_depth",
     ])?;
     let d = SolverSettings::default();
     let linear = match t.get("linear") {
@@ -258,6 +276,25 @@ pub(crate) fn solver(t: &Table<'_>) -> Res<SolverSettings> {
         linear,
         rhie_chow: t.opt("rhie_chow", d.rhie_chow, |n| {
             n.f64_if(|x| x >= 0.0, "be >= 0")
+        })?,
+        acceleration: t.opt("acceleration", d.acceleration, |n| {
+            n.choice(
+                "outer-iteration acceleration",
+                &[
+                    ("none", Acceleration::None),
+                    ("anderson", Acceleration::Anderson),
+                ],
+            )
+        })?,
+        acceleration_depth: t.opt("acceleration_depth", d.acceleration_depth, |n| {
+            let m = n.usize_min(1)?;
+            if m > crate::anderson::MAX_DEPTH {
+                return Err(n.err(format!(
+                    "acceleration_depth = {m} is more than {}",
+                    crate::anderson::MAX_DEPTH
+                )));
+            }
+            Ok(m)
         })?,
     })
 }

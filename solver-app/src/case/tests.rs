@@ -116,6 +116,8 @@ max_outer = 300
 relaxation = 0.7
 on_nonconvergence = "continue"
 rhie_chow = 0
+acceleration = "anderson"
+acceleration_depth = 8
 [solver.linear]
 method = "bicgstab-ilu"
 tolerance = 1e-3
@@ -151,12 +153,14 @@ every = 5
                 max_iterations: 50
             },
             rhie_chow: 0.0,
+            acceleration: Acceleration::Anderson,
+            acceleration_depth: 8,
         }
     );
     assert_eq!(c.bodies[0].material.rho, Some(7800.0));
     assert_eq!(c.output.directory, PathBuf::from("out/dir"));
     assert_eq!(c.output.every, 5);
-    assert_eq!(c.source.line_of("solver.linear.method"), Some(16));
+    assert_eq!(c.source.line_of("solver.linear.method"), Some(18));
 
     let direct = text.replace("bicgstab-ilu", "direct");
     assert_eq!(parse(&direct).solver.linear.method, LinearMethod::Direct);

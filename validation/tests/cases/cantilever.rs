@@ -2,8 +2,9 @@
 use validation::analytical::timoshenko_cantilever_tip;
 use validation::{patch_mean, run_toml};
 
-#[test]
-fn plane_stress_cantilever_tip_deflection_within_2_percent() {
+/// Tip deflection and outer iterations of the plane-stress cantilever,
+/// solved with `[solver]` `extra` lines.
+fn cantilever(extra: &str) -> (f64, usize) {
     // L = 10, D = 1, thickness 0.1; end shear P = 1 as a uniform traction
     let (l, d, t, e, nu, p) = (10.0, 1.0, 0.1, 1.0e5, 0.3, 1.0);
     let traction = -p / (d * t);
@@ -16,6 +17,7 @@ steps = 1
 [solver]
 tolerance = 1e-9
 max_outer = 100000
+{extra}
 [[body]]
 name = "beam"
 mesh = {{ generator = "box", min = [0, -0.5, 0], max = [{l}, 0.5, {t}], cells = [100, 10, 1] }}
@@ -40,9 +42,21 @@ type = "empty"
     let reference = -timoshenko_cantilever_tip(p, l, d, t, e, nu);
     let rel = (tip - reference).abs() / reference.abs();
     eprintln!(
-        "cantilever: tip deflection {tip:.6e}, Timoshenko {reference:.6e}, relative difference {:.3} %, {} outer iterations",
+        "cantilever ({extra}): tip deflection {tip:.6e}, Timoshenko {reference:.6e}, relative difference {:.3} %, {} outer iterations",
         rel * 100.0,
         out.summary.outer_iterations
     );
-    assert!(rel < 0.02);
+    (rel, out.summary.outer_iterations)
+}
+
+/// Within 2 % of Timoshenko; and Anderson acceleration of the outer
+/// iteration (beyond the thesis) reaches the same deflection in under a
+/// third of the outer iterations (measured 3,177 against 14,644).
+#[test]
+fn plane_stress_cantilever_tip_deflection_within_2_percent() {
+    let (rel_plain, plain) = cantilever("");
+    assert!(rel_plain < 0.02);
+    let (rel, accelerated) = cantilever("acceleration = \"anderson\"");
+    assert!((rel - rel_plain).abs() < 1e-4, "{rel} vs {rel_plain}");
+    assert!(accelerated * 3 < plain, "{accelerated} vs {plain}");
 }

@@ -454,6 +454,26 @@ impl CsrMatrix {
         m
     }
 
+    /// Writes the value index of each entry of `extra` (row, col) to `out`
+    /// (cleared first) and returns true when every entry is in the pattern;
+    /// false at the first that is not (`out` is then incomplete and
+    /// [`CsrMatrix::add_entries`] is needed). Allocates nothing once `out`
+    /// has grown to `extra.len()`: the per-iteration check of the implicit
+    /// contact's cross-body entries.
+    pub fn find_entries(&self, extra: &[(u32, u32)], out: &mut Vec<u32>) -> bool {
+        out.clear();
+        for &(r, c) in extra {
+            if r as usize >= self.n || c as usize >= self.n {
+                return false;
+            }
+            match self.entry_index(r as usize, c as usize) {
+                Some(k) => out.push(k as u32),
+                None => return false,
+            }
+        }
+        true
+    }
+
     /// Grows the pattern with the entries `extra` (row, col); existing entries and repeats are fine.
     ///
     /// Values of existing entries are kept, new entries start at zero. When
@@ -1116,6 +1136,11 @@ mod tests {
             g.slots,
             vec![a.entry_index(0, 1).unwrap() as u32, a.diag_index()[4]]
         );
+        let mut found = Vec::new();
+        assert!(a.find_entries(&[(0, 1), (4, 4)], &mut found));
+        assert_eq!(found, g.slots);
+        assert!(!a.find_entries(&[(0, 1), (0, 8)], &mut found));
+        assert!(!a.find_entries(&[(9, 0)], &mut found));
         // new (contact-like) entries, with a repeat and an existing one
         let g = a
             .add_entries(&[(0, 8), (8, 0), (0, 8), (2, 6), (1, 0)])
@@ -1126,6 +1151,8 @@ mod tests {
         assert_eq!(g.slots[0], g.slots[2]);
         assert_eq!(g.slots[0] as usize, a.entry_index(0, 8).unwrap());
         assert_eq!(a.values()[g.slots[0] as usize], 0.0);
+        assert!(a.find_entries(&[(0, 8), (8, 0), (0, 8), (2, 6), (1, 0)], &mut found));
+        assert_eq!(found, g.slots);
         slots.remap(&g);
         for f in 0..own.len() {
             let (o, nb) = (own[f] as usize, nei[f] as usize);

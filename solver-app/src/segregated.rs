@@ -395,7 +395,13 @@ impl SegregatedSolver {
                 self.diag_work[c][b] += k;
             }
         }
-        let solved: Vec<usize> = (0..3).filter(|&c| !self.unsolved[c]).collect();
+        let mut solved = [0usize; 3];
+        let mut n_solved = 0;
+        for c in (0..3).filter(|&c| !self.unsolved[c]) {
+            solved[n_solved] = c;
+            n_solved += 1;
+        }
+        let solved = &solved[..n_solved];
         if self.matrices.len() < solved.len() {
             let template = self.matrices[0].clone();
             while self.matrices.len() < solved.len() {
@@ -414,16 +420,22 @@ impl SegregatedSolver {
             self.spring_entries.push(sp.cells);
             self.spring_entries.push((sp.cells.1, sp.cells.0));
         }
-        for (mi, m) in self.matrices.iter_mut().enumerate() {
+        for m in self.matrices.iter_mut() {
             for &k in &self.spring_slots {
                 m.values_mut()[k as usize] = 0.0;
             }
-            let growth = m.add_entries(&self.spring_entries)?;
-            if mi == 0 {
-                // every matrix has the same pattern and grows the same way
-                self.slots.remap(&growth);
-                self.new_spring_slots.clear();
-                self.new_spring_slots.extend_from_slice(&growth.slots);
+        }
+        // the pattern grows only when new cell pairs come into contact;
+        // otherwise the slots are found without allocating
+        if !self.matrices[0].find_entries(&self.spring_entries, &mut self.new_spring_slots) {
+            for (mi, m) in self.matrices.iter_mut().enumerate() {
+                let growth = m.add_entries(&self.spring_entries)?;
+                if mi == 0 {
+                    // every matrix has the same pattern and grows the same way
+                    self.slots.remap(&growth);
+                    self.new_spring_slots.clear();
+                    self.new_spring_slots.extend_from_slice(&growth.slots);
+                }
             }
         }
         std::mem::swap(&mut self.spring_slots, &mut self.new_spring_slots);

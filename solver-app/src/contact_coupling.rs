@@ -94,9 +94,10 @@ pub struct ContactSide {
     /// few more (the springs only shape the path; the converged traction is
     /// the contact algorithm's).
     beta: Vec<f64>,
-    /// `applied` and `beta` at the start of the current attempt at an
-    /// increment (restored when it is redone with a smaller step).
-    saved: (Vec<Vector>, Vec<f64>),
+    /// `applied`, `beta` and `opposite_reference` at the start of the
+    /// current attempt at an increment (restored when it is redone with a
+    /// smaller step).
+    saved: (Vec<Vector>, Vec<f64>, Vec<Vector>),
 }
 
 /// GGI-weighted average over the opposite faces of `value(opposite face)`
@@ -259,6 +260,9 @@ pub struct ContactInterface {
     /// Whether the penalty was evaluated on the contacting faces of this increment.
     penalty_localised: bool,
     coupling: ExplicitRelaxation,
+    /// `coupling` (its accumulated tractions λ of eq. 4.13) at the start of
+    /// the current attempt at an increment.
+    coupling_saved: ExplicitRelaxation,
     /// The configured tangential relaxation (before any damping).
     tangential_relaxation: f64,
     /// Implicit coupling (thesis §4.5): linearised normal traction.
@@ -424,7 +428,7 @@ impl ContactSet {
                     opposite_reference: vec![Vector::zeros(); surface.n_faces()],
                     opposite_now: vec![Vector::zeros(); surface.n_faces()],
                     beta: vec![0.0; surface.n_faces()],
-                    saved: (Vec::new(), Vec::new()),
+                    saved: (Vec::new(), Vec::new(), Vec::new()),
                     surface,
                 })
             };
@@ -473,6 +477,7 @@ impl ContactSet {
                 params,
                 materials,
                 penalty_localised: false,
+                coupling_saved: coupling.clone(),
                 coupling,
                 tangential_relaxation,
                 implicit,
@@ -766,9 +771,11 @@ impl ContactSet {
     pub fn save_start(&mut self) {
         self.updates_in_increment = 0;
         for ci in &mut self.interfaces {
+            ci.coupling_saved.clone_from(&ci.coupling);
             for side in [&mut ci.master, &mut ci.slave] {
                 side.saved.0.clone_from(&side.applied);
                 side.saved.1.clone_from(&side.beta);
+                side.saved.2.clone_from(&side.opposite_reference);
             }
         }
     }
@@ -777,9 +784,17 @@ impl ContactSet {
     /// may have left non-finite tractions) is forgotten.
     pub fn restore_start(&mut self) {
         for ci in &mut self.interfaces {
+            // the relaxation accumulates the tractions it applies: a diverged
+            // attempt leaves them huge or non-finite, and the next attempt
+            // would start from them
+            ci.coupling.clone_from(&ci.coupling_saved);
             for side in [&mut ci.master, &mut ci.slave] {
                 side.applied.clone_from(&side.saved.0);
                 side.beta.clone_from(&side.saved.1);
+                // the opposite cells' displacement of the last contact
+                // update: the next attempt's first outer iteration measures
+                // their motion from it (eq. 4.69) before updating it
+                side.opposite_reference.clone_from(&side.saved.2);
             }
         }
     }

@@ -17,6 +17,7 @@ mod openfoam;
 mod poly_mesh;
 mod quality;
 mod surface;
+mod wedge_point_constraint;
 
 pub mod generators;
 
@@ -29,6 +30,7 @@ pub use openfoam::{face_connected_regions, read_polymesh, select_body};
 pub use poly_mesh::{CellZone, Patch, PolyMesh};
 pub use quality::MeshQuality;
 pub use surface::{PointNormalWeighting, Surface, NO_FACE};
+pub use wedge_point_constraint::{PointConstraint, WedgePointConstraint};
 
 /// Scalar type used everywhere.
 pub type Real = f64;

@@ -612,6 +612,9 @@ impl ContactSet {
             // total displacement under small strain)
             let (u, u_b) = b.momentum.increment();
             op.interpolate_points(&side.surface.point_ids, u, u_b, &mut side.point_u);
+            if let Some(w) = &b.wedge_points {
+                w.apply_listed(&side.surface.point_ids, &mut side.point_u);
+            }
         }
         for ((x, x0), u) in side
             .current

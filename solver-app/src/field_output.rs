@@ -103,6 +103,9 @@ impl FieldOutput {
                 }
                 let (u, u_b) = b.momentum.increment();
                 op.interpolate(u, u_b, &mut buf.point_u);
+                if let Some(w) = &b.wedge_points {
+                    w.apply_all(&mut buf.point_u);
+                }
                 for ((x, pd), ((u, xm), x0)) in buf
                     .points
                     .iter_mut()

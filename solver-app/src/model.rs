@@ -5,7 +5,7 @@ use fv_discretise::{wedge_rotations, Inertia, PatchCondition, SolidMomentum, Str
 use fv_materials::{
     Hardening, LargeStrainMaterial, LinearElastic, NeoHookean, NeoHookeanPlastic, StVenantKirchhoff,
 };
-use fv_mesh::{CellToPoint, MeshGeometry, PolyMesh, Tensor, Vector};
+use fv_mesh::{CellToPoint, MeshGeometry, PolyMesh, Tensor, Vector, WedgePointConstraint};
 
 /// Relative tolerance of a force-controlled patch: the patch force must
 /// be within this fraction of the target force (Algorithm 1, line 1).
@@ -129,6 +129,10 @@ pub struct Body {
     /// Cell-to-point interpolation that moves the mesh at the end of every
     /// increment (updated Lagrangian only, eqs. 3.31–3.32).
     mesh_motion: Option<CellToPoint>,
+    /// Points of the wedge planes keep to their planes, points of the axis
+    /// to the axis, whenever points are moved (mesh motion, contact
+    /// surfaces, output); `None` without wedge patches.
+    pub wedge_points: Option<WedgePointConstraint>,
     /// Point displacement of the increment (workspace of the mesh motion).
     point_du: Vec<Vector>,
     /// Force-controlled patches.
@@ -213,6 +217,9 @@ impl Body {
             self.momentum.hold_face_tractions(&self.mesh, &self.geom);
             let (du, du_b) = self.momentum.increment();
             op.interpolate(du, du_b, &mut self.point_du);
+            if let Some(w) = &self.wedge_points {
+                w.apply_all(&mut self.point_du);
+            }
             for (x, d) in self.mesh.points.iter_mut().zip(&self.point_du) {
                 *x += d;
             }
@@ -401,6 +408,7 @@ fn build_body(
             e.to_string(),
         )
     })?;
+    let wedge_points = WedgePointConstraint::new(&mesh, &geom, &wedge_patches);
     let mut conditions = Vec::with_capacity(mesh.patches.len());
     for (pi, s) in patch_specs.iter().enumerate() {
         let n = mesh.patches[pi].size;
@@ -465,6 +473,7 @@ fn build_body(
         patch_specs,
         rigid_motion: (Vector::zeros(), Tensor::identity(), Vector::zeros()),
         mesh_motion,
+        wedge_points,
         point_du,
         force_controls_saved: Vec::new(),
         conditions_saved: Vec::new(),

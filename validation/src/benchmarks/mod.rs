@@ -4,6 +4,7 @@
 pub mod block_in_half_tube;
 pub mod concentric_cylinders;
 pub mod coupling_efficiency;
+pub mod die_drawing;
 pub mod flat_punch;
 pub mod hertz_cylinder;
 pub mod hertz_sphere;

@@ -7,6 +7,7 @@ mod block_in_half_tube;
 mod cantilever;
 mod concentric_cylinders;
 mod contact_patch;
+mod die_drawing;
 mod dynamics;
 mod flat_punch;
 mod force_control;

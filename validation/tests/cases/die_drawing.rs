@@ -1,0 +1,92 @@
+//! Cylinder drawn through a rigid die (thesis §5.3.1, eq. 5.1): the
+//! pulling force against the steady drawing force of an incompressible
+//! neo-Hookean cylinder, 640.4 N; large strain in a one-cell wedge.
+use validation::benchmarks::die_drawing::{analytical_force, run, DieRun};
+
+/// Pull distances (m) over which the force is taken as steady: the front
+/// of the straight part of the cylinder (y = 0.08 m in the mesh) passes
+/// the die exit at about 0.175 m, before that the force still rises with
+/// the pre-shaped front being drawn; increment 73 (0.1825 m) stops
+/// converging.
+const STEADY: (f64, f64) = (0.17, 0.18);
+
+fn report(r: &DieRun) {
+    let reference = analytical_force();
+    for (d, (f, n)) in r.pull.iter().zip(r.force.iter().zip(&r.outer_iterations)) {
+        if *d >= 0.1 {
+            eprintln!(
+                "  pull {d:.4} m: F = {f:.1} N ({:+.2} %), {n} outer iterations",
+                100.0 * (f / reference - 1.0)
+            );
+        }
+    }
+    eprintln!(
+        "die drawing (die master: {}): reached {:.4} m, {} increments, {} outer iterations ({:.0} per increment), {:.1} s, {:.2} µs per cell per outer iteration; wedge {:.6}°, axis points at most {:.1e} m off the axis; {:?}",
+        !r.swapped,
+        r.reached(),
+        r.cost.increments,
+        r.cost.outer_iterations,
+        r.cost.outer_iterations as f64 / r.cost.increments.max(1) as f64,
+        r.cost.wall_seconds,
+        r.cost.us_per_cell_iteration(),
+        r.wedge_degrees,
+        r.axis_drift,
+        r.failure
+    );
+}
+
+/// The case up to the end of the steady window (72 increments, ~45 s).
+#[test]
+fn die_drawing_force_levels_off_within_three_percent_of_eq_5_1() {
+    let r = run("case.toml", STEADY.1, false);
+    report(&r);
+    assert!(r.converged, "{:?}", r.failure);
+    // the wedge keeps its shape under the mesh motion (WedgePointConstraint)
+    assert!(
+        r.axis_drift < 1e-12,
+        "axis points moved off the axis by {}",
+        r.axis_drift
+    );
+    assert!(
+        (r.wedge_degrees - 5.0).abs() < 1e-9,
+        "wedge {}°",
+        r.wedge_degrees
+    );
+    let reference = analytical_force();
+    let Some((mean, spread)) = r.mean_force(STEADY.0, STEADY.1) else {
+        panic!("the steady window was not reached")
+    };
+    let error = mean / reference - 1.0;
+    eprintln!(
+        "steady force over {:.4}–{:.4} m: {mean:.1} N vs {reference:.1} N (eq. 5.1): {:+.2} %, spread {:.2} %",
+        STEADY.0,
+        STEADY.1,
+        100.0 * error,
+        100.0 * spread
+    );
+    assert!(error.abs() < 0.03, "steady force {mean} vs {reference}");
+    assert!(
+        spread < 0.02,
+        "the force still changes by {spread} over the window"
+    );
+}
+
+/// The full 0.25 m pull, either side master: the steady force over
+/// 0.18–0.25 m within 3 % of eq. 5.1. Fails today: with the die as master
+/// increment 73 (0.1825 m) stops at a relative residual of 1.6e-3; with
+/// the cylinder as master increment 60 (0.15 m) diverges (NaN). See the
+/// case README.
+#[test]
+#[ignore = "the run stops converging at 0.1825 m (README.md); ~1 min per side"]
+fn die_drawing_full_pull_either_side_master() {
+    for swapped in [false, true] {
+        let r = run("case.toml", 0.25, swapped);
+        report(&r);
+        assert!(r.converged, "{:?}", r.failure);
+        let Some((mean, _)) = r.mean_force(0.18, 0.25) else {
+            panic!("the steady window was not reached")
+        };
+        let error = mean / analytical_force() - 1.0;
+        assert!(error.abs() < 0.03, "steady force {mean} ({error:+})");
+    }
+}

@@ -169,7 +169,6 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
         }
         failure = Some(msg);
     }
-    let dt = case.time.dt();
     let reassemble_every_increment = bodies
         .iter()
         .any(|b| !b.rigid && b.momentum.law.is_updated_lagrangian());
@@ -181,11 +180,7 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
         if failure.is_some() {
             break;
         }
-        let t = if k == case.time.steps {
-            case.time.end
-        } else {
-            dt * k as f64
-        };
+        let t = case.time.time_at(k);
         // the increment, in sub-steps when an attempt fails (cut-back)
         let mut total = IncrementInfo::default();
         let mut t0 = t_prev;

@@ -40,19 +40,60 @@ impl Default for Analysis {
     }
 }
 
-/// `[time]`: `end` and the number of equal increments.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// `[time]`: `end` and the number of equal increments, or `intervals`
+/// of equal increments each (e.g. an indentation phase in 100 and a
+/// sliding phase in 500 increments, thesis §5.3.2).
+#[derive(Debug, Clone, PartialEq)]
 pub struct TimeControl {
     /// End time (> 0).
     pub end: f64,
-    /// Number of equal increments (>= 1); `step = dt` in the file becomes `round(end/dt)`.
+    /// Number of increments in all (>= 1); `step = dt` in the file becomes `round(end/dt)`.
     pub steps: usize,
+    /// `intervals = [[t_1, n_1], [t_2, n_2], ...]`: `n_i` equal increments
+    /// from `t_{i-1}` (0 for the first) to `t_i`; empty: `steps` equal
+    /// increments from 0 to `end`.
+    pub intervals: Vec<(f64, usize)>,
 }
 
 impl TimeControl {
-    /// Time increment `end / steps`.
+    /// `steps` equal increments from 0 to `end`.
+    pub fn uniform(end: f64, steps: usize) -> Self {
+        TimeControl {
+            end,
+            steps,
+            intervals: Vec::new(),
+        }
+    }
+
+    /// Size of the first increment (`end / steps` for equal increments).
     pub fn dt(&self) -> f64 {
-        self.end / self.steps as f64
+        match self.intervals.first() {
+            Some(&(t1, n1)) => t1 / n1 as f64,
+            None => self.end / self.steps as f64,
+        }
+    }
+
+    /// Time at the end of increment `k` (1-based; `k = steps` gives `end`
+    /// exactly, as does the last increment of every interval).
+    pub fn time_at(&self, k: usize) -> f64 {
+        if k >= self.steps {
+            return self.end;
+        }
+        let mut t0 = 0.0;
+        let mut first = 0;
+        for &(t1, n) in &self.intervals {
+            if k <= first + n {
+                let j = k - first;
+                return if j == n {
+                    t1
+                } else {
+                    t0 + (t1 - t0) * j as f64 / n as f64
+                };
+            }
+            t0 = t1;
+            first += n;
+        }
+        self.end * k as f64 / self.steps as f64
     }
 }
 
@@ -188,7 +229,10 @@ pub(crate) fn analysis(t: &Table<'_>) -> Res<Analysis> {
 const MAX_STEPS_FROM_STEP: f64 = 1e15;
 
 pub(crate) fn time(t: &Table<'_>) -> Res<TimeControl> {
-    t.deny_unknown(&["end", "steps", "step"])?;
+    t.deny_unknown(&["end", "steps", "step", "intervals"])?;
+    if let Some(intervals) = t.get("intervals") {
+        return time_intervals(t, &intervals.node());
+    }
     let end = t.need("end", |n| n.positive())?;
     match (t.get("steps"), t.get("step")) {
         (Some(_), Some(step)) => Err(step.node().err("give either `steps` or `step`, not both")),
@@ -196,10 +240,7 @@ pub(crate) fn time(t: &Table<'_>) -> Res<TimeControl> {
             "steps",
             "missing `steps` (number of increments) or `step` (increment size)",
         )),
-        (Some(steps), None) => Ok(TimeControl {
-            end,
-            steps: steps.node().usize_min(1)?,
-        }),
+        (Some(steps), None) => Ok(TimeControl::uniform(end, steps.node().usize_min(1)?)),
         (None, Some(step)) => {
             let node = step.node();
             let dt = node.positive()?;
@@ -227,12 +268,61 @@ pub(crate) fn time(t: &Table<'_>) -> Res<TimeControl> {
                     fmt_num(end)
                 )));
             }
-            Ok(TimeControl {
-                end,
-                steps: r as usize,
-            })
+            Ok(TimeControl::uniform(end, r as usize))
         }
     }
+}
+
+/// `time.intervals = [[t_1, n_1], ...]`: increasing end times, at least one
+/// increment each; `end`, if given, must be the last `t_i`; `steps`/`step`
+/// are not allowed with it.
+fn time_intervals(t: &Table<'_>, node: &super::reader::Node<'_>) -> Res<TimeControl> {
+    for key in ["steps", "step"] {
+        if let Some(k) = t.get(key) {
+            return Err(k
+                .node()
+                .err(format!("give either `intervals` or `{key}`, not both")));
+        }
+    }
+    let mut intervals = Vec::new();
+    let mut t_prev = 0.0;
+    for e in node.array()? {
+        let pair = e.node().array()?;
+        if pair.len() != 2 {
+            return Err(e
+                .node()
+                .err("expected [end time, increments], e.g. [1.0, 100]"));
+        }
+        let t1 = pair[0].node().f64()?;
+        if t1 <= t_prev {
+            return Err(pair[0].node().err(format!(
+                "interval end times must increase from 0, got {} after {}",
+                pair[0].node().raw(),
+                fmt_num(t_prev)
+            )));
+        }
+        let n = pair[1].node().usize_min(1)?;
+        intervals.push((t1, n));
+        t_prev = t1;
+    }
+    if intervals.is_empty() {
+        return Err(node.err("needs at least one [end time, increments]"));
+    }
+    if let Some(end) = t.get("end") {
+        let e = end.node().positive()?;
+        if (e - t_prev).abs() > 1e-12 * t_prev {
+            return Err(end.node().err(format!(
+                "time.end = {} differs from the last interval end {}",
+                end.node().raw(),
+                fmt_num(t_prev)
+            )));
+        }
+    }
+    Ok(TimeControl {
+        end: t_prev,
+        steps: intervals.iter().map(|i| i.1).sum(),
+        intervals,
+    })
 }
 
 fn tolerance(n: &super::reader::Node<'_>) -> Res<f64> {

@@ -47,13 +47,7 @@ fn defaults() {
     assert_eq!(c.title, "t");
     assert_eq!(c.analysis.kind, AnalysisKind::Static);
     assert_eq!(c.analysis.strain, StrainKind::Small);
-    assert_eq!(
-        c.time,
-        TimeControl {
-            end: 1.0,
-            steps: 10
-        }
-    );
+    assert_eq!(c.time, TimeControl::uniform(1.0, 10));
     assert!((c.time.dt() - 0.1).abs() < 1e-15);
     assert_eq!(c.solver.tolerance, 1e-6);
     assert_eq!(c.solver.max_outer, 20000);
@@ -133,13 +127,7 @@ every = 5
     let c = parse(text);
     assert_eq!(c.analysis.kind, AnalysisKind::Dynamic);
     assert_eq!(c.analysis.strain, StrainKind::Large);
-    assert_eq!(
-        c.time,
-        TimeControl {
-            end: 2.0,
-            steps: 20
-        }
-    );
+    assert_eq!(c.time, TimeControl::uniform(2.0, 20));
     assert_eq!(
         c.solver,
         SolverSettings {
@@ -200,6 +188,39 @@ fn time_step_forms() {
     let e = fail(&t("steps = 2"));
     assert_eq!(e.key.as_deref(), Some("time.end"));
     assert!(e.message.contains("missing"), "{e}");
+}
+
+#[test]
+fn time_intervals() {
+    let t = |body: &str| MIN.replace("end = 1.0\nsteps = 10", body);
+    // thesis §5.3.2: 100 increments to t = 1, then 500 to t = 2
+    let c = parse(&t("intervals = [[1.0, 100], [2.0, 500]]"));
+    assert_eq!(c.time.steps, 600);
+    assert_eq!(c.time.end, 2.0);
+    assert!((c.time.dt() - 0.01).abs() < 1e-15);
+    assert!((c.time.time_at(1) - 0.01).abs() < 1e-15);
+    assert_eq!(c.time.time_at(100), 1.0);
+    assert!((c.time.time_at(101) - 1.002).abs() < 1e-15);
+    assert!((c.time.time_at(350) - 1.5).abs() < 1e-14);
+    assert_eq!(c.time.time_at(600), 2.0);
+    assert_eq!(
+        parse(&t("end = 2\nintervals = [[1.0, 1], [2, 3]]"))
+            .time
+            .steps,
+        4
+    );
+    let e = fail(&t("intervals = [[1.0, 10]]\nsteps = 10"));
+    assert!(e.message.contains("not both"), "{e}");
+    let e = fail(&t("end = 3\nintervals = [[1.0, 10]]"));
+    assert!(e.message.contains("differs"), "{e}");
+    let e = fail(&t("intervals = [[1.0, 10], [0.5, 10]]"));
+    assert!(e.message.contains("increase"), "{e}");
+    let e = fail(&t("intervals = [[1.0, 0]]"));
+    assert!(e.message.contains("integer >= 1"), "{e}");
+    let e = fail(&t("intervals = [[1.0]]"));
+    assert!(e.message.contains("end time, increments"), "{e}");
+    let e = fail(&t("intervals = []"));
+    assert!(e.message.contains("at least one"), "{e}");
 }
 
 #[test]

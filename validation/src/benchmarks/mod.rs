@@ -11,6 +11,7 @@ pub mod hertz_sphere;
 pub mod nafems_punch;
 pub mod parallel_cylinders;
 pub mod rigid_cylinder;
+pub mod shallow_ironing;
 pub mod sphere_block;
 pub mod twisting_blocks;
 

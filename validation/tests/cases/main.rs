@@ -21,6 +21,7 @@ mod nafems_punch;
 mod parallel_cylinders;
 mod punch_probe;
 mod rigid_cylinder;
+mod shallow_ironing;
 mod sphere_block;
 mod twisting_blocks;
 mod uniform_stress;

@@ -1,0 +1,149 @@
+//! shallow-ironing (thesis §5.3.2, table 5.2; issue 7;
+//! `../shared/benchmarks/README.md`): a stiff block with a rounded bottom
+//! pressed 1 mm into a foundation and dragged 10 mm along it, μ = 0.3,
+//! neo-Hookean, plane strain, N and mm.
+//!
+//! The full case (600 increments, ~186,000 outer iterations, 12 min on
+//! one core) is `--ignored`; the default test runs the indentation as
+//! shipped (100 increments, ~45 s) and checks the vertical force at
+//! t = 1 against the published curves.
+use validation::benchmarks::shallow_ironing::{
+    reference_curves, run, Options, MU_G_BAND, OSCILLATION_LIMIT,
+};
+use validation::shared_dir;
+
+/// V at t = 1 (just before the slide) of Code_Aster SSNP153
+/// (`reference/asterVertical.dat` at t = 0.999, × 100), N/mm.
+const V_ASTER_T1: f64 = 330.8;
+/// The same of Hartmann–Oliver (`hartmannOliverVertical.dat`), N/mm.
+const V_HARTMANN_T1: f64 = 318.8;
+
+/// Half width of the moving average for the oscillation of H: 12
+/// increments each side, 0.5 mm of slide, five foundation faces.
+const HALF_WINDOW: usize = 12;
+
+/// Indentation as shipped: V(t = 1) = 321.9 N/mm, −2.7 % against
+/// Code_Aster and +1.0 % against Hartmann–Oliver (Fischer–Wriggers 297,
+/// Yastrebov 289, Poulios–Renard 267).
+#[test]
+fn indentation_vertical_force_against_code_aster() {
+    let r = run(&Options {
+        until: 1.0,
+        ..Default::default()
+    });
+    assert!(r.converged, "{:?}", r.failure);
+    let (h, v) = r.forces_at(1.0);
+    eprintln!(
+        "shallow ironing, indentation: H = {h:.2}, V = {v:.2} N/mm at t = 1 (Code_Aster {V_ASTER_T1}, Hartmann–Oliver {V_HARTMANN_T1}); {:.0} outer iterations per increment, {:.1} s, {:.3} µs/cell/iteration",
+        r.mean_outer(0.0, 1.0),
+        r.cost.wall_seconds,
+        r.cost.us_per_cell_iteration()
+    );
+    assert!(
+        (v / V_ASTER_T1 - 1.0).abs() < 0.05,
+        "V = {v} against {V_ASTER_T1}"
+    );
+    assert!(
+        (v / V_HARTMANN_T1 - 1.0).abs() < 0.05,
+        "V = {v} against {V_HARTMANN_T1}"
+    );
+    // the block is pressed, not yet dragged: H is a fraction of μ V
+    assert!(h > 0.0 && h < 0.3 * v, "H = {h}, V = {v}");
+}
+
+/// The full case: μ_g = H/V at t = 1.5 within [0.30, 0.36] (thesis 0.32)
+/// and the oscillation of H over t 1.2–1.9 (largest deviation from its
+/// centred 25-increment moving average) below 1 % of its mean.
+///
+/// Measured (implicit coupling, foundation master): μ_g = 0.306 and an
+/// oscillation of 1.16 %: the μ_g check passes, the oscillation check
+/// FAILS (period five increments = one 0.1 mm foundation face,
+/// peak-to-peak 2.3 N on 126 N).
+#[test]
+#[ignore]
+fn full_slide_global_friction_and_smoothness() {
+    let r = run(&Options::default());
+    assert!(r.converged, "{:?}", r.failure);
+    let mu_g = r.mu_g(1.5);
+    let osc = r.oscillation(1.2, 1.9, HALF_WINDOW);
+    let (h1, v1) = r.forces_at(1.0);
+    let (h15, v15) = r.forces_at(1.5);
+    eprintln!(
+        "shallow ironing: t = 1: H = {h1:.2}, V = {v1:.2}; t = 1.5: H = {h15:.2}, V = {v15:.2} N/mm, μ_g = {mu_g:.4}; oscillation of H over t 1.2–1.9 {:.3} %; outer iterations per increment {:.0} (indentation), {:.0} (slide); {:.0} s, {:.3} µs/cell/iteration",
+        100.0 * osc,
+        r.mean_outer(0.0, 1.0),
+        r.mean_outer(1.0, 2.0),
+        r.cost.wall_seconds,
+        r.cost.us_per_cell_iteration()
+    );
+    if let Some(shared) = shared_dir() {
+        match reference_curves(&shared) {
+            Ok(curves) => {
+                for c in &curves {
+                    let (h, v) = c.forces_at(1.5);
+                    eprintln!(
+                        "  {}: t = 1.5 H = {h:.1} ({:+.1} %), V = {v:.1} ({:+.1} %), μ_g = {:.3}",
+                        c.source,
+                        100.0 * (h15 / h - 1.0),
+                        100.0 * (v15 / v - 1.0),
+                        h / v
+                    );
+                }
+            }
+            Err(e) => eprintln!("  reference curves: {e}"),
+        }
+    } else {
+        eprintln!("  reference curves skipped: ../shared is absent");
+    }
+    assert!(
+        mu_g >= MU_G_BAND.0 && mu_g <= MU_G_BAND.1,
+        "μ_g = {mu_g} outside {MU_G_BAND:?}"
+    );
+    assert!(
+        osc < OSCILLATION_LIMIT,
+        "H oscillates by {:.3} % (limit {:.0} %)",
+        100.0 * osc,
+        100.0 * OSCILLATION_LIMIT
+    );
+}
+
+/// Master and slave swapped (block arc master), the full case; the same
+/// acceptance as [`full_slide_global_friction_and_smoothness`].
+#[test]
+#[ignore]
+fn full_slide_block_master() {
+    let r = run(&Options {
+        swapped: true,
+        ..Default::default()
+    });
+    assert!(r.converged, "{:?}", r.failure);
+    let mu_g = r.mu_g(1.5);
+    let osc = r.oscillation(1.2, 1.9, HALF_WINDOW);
+    eprintln!(
+        "shallow ironing, block master: μ_g(1.5) = {mu_g:.4}, oscillation {:.3} %, {:.0} s",
+        100.0 * osc,
+        r.cost.wall_seconds
+    );
+    assert!(mu_g >= MU_G_BAND.0 && mu_g <= MU_G_BAND.1, "μ_g = {mu_g}");
+    assert!(osc < OSCILLATION_LIMIT, "oscillation {:.3} %", 100.0 * osc);
+}
+
+/// The reference files parse into five curves with V(t = 1) of the order
+/// of the computed 322 N/mm (the units check of the case file).
+#[test]
+fn reference_curves_parse() {
+    let Some(shared) = shared_dir() else {
+        eprintln!("skipped: ../shared is absent");
+        return;
+    };
+    let curves = match reference_curves(&shared) {
+        Ok(c) => c,
+        Err(e) => panic!("{e}"),
+    };
+    assert_eq!(curves.len(), 5);
+    for c in &curves {
+        let (_, v) = c.forces_at(0.999);
+        eprintln!("{}: V(t = 1) = {v:.1} N/mm", c.source);
+        assert!(v > 250.0 && v < 350.0, "{}: {v}", c.source);
+    }
+}

@@ -103,12 +103,19 @@ impl HistoryTable {
 /// and returns the parsed `history.csv` as well (mesh paths must be absolute
 /// or generators).
 pub fn run_toml_with_history(text: &str) -> (RunOutcome, HistoryTable) {
+    run_toml_in_with_history(text, None)
+}
+
+/// [`run_toml_with_history`] for a case whose relative mesh paths are
+/// relative to `case_dir` (a shipped case read by
+/// [`benchmarks::read_case`]), or to the temporary folder when `None`.
+pub fn run_toml_in_with_history(text: &str, case_dir: Option<&Path>) -> (RunOutcome, HistoryTable) {
     let dir = std::env::temp_dir().join(format!(
         "fvc-history-{}-{}",
         std::process::id(),
         HISTORY_RUNS.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
     ));
-    let case = match parse_case(text, &dir.join("case.toml")) {
+    let case = match parse_case(text, &case_dir.unwrap_or(&dir).join("case.toml")) {
         Ok(c) => c,
         Err(e) => panic!("test case does not parse: {e}"),
     };

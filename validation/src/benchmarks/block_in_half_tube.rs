@@ -11,7 +11,7 @@
 //! strains stay below 1 % and the translation is strain-free (see the case
 //! files for why not the updated Lagrangian form).
 use super::{read_case, RunCost};
-use crate::run_toml_with_history;
+use crate::run_toml_in_with_history;
 
 /// The tube's triangulation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -152,23 +152,10 @@ pub fn compare(a: &BlockInHalfTube, b: &BlockInHalfTube) -> (f64, f64) {
 /// test short).
 pub fn run(tube: Tube, algorithm: &str, slide: f64, steps: usize) -> BlockInHalfTube {
     let (dir, text) = read_case("block-in-half-tube", tube.case_file());
-    let abs = |f: &str| dir.join(f).display().to_string();
-    let tube_mesh = match tube {
-        Tube::Coarse => "tube-coarse.msh",
-        Tube::Fine => "tube-fine.msh",
-    };
     let text = text
         .replace(
             "algorithm = \"segment-to-segment-nagata\"",
             &format!("algorithm = \"{algorithm}\""),
-        )
-        .replace(
-            "file = \"block.msh\"",
-            &format!("file = {:?}", abs("block.msh")),
-        )
-        .replace(
-            &format!("file = \"{tube_mesh}\""),
-            &format!("file = {:?}", abs(tube_mesh)),
         )
         .replace(
             &format!("end = {SLIDE:.1}\nsteps = {STEPS}"),
@@ -182,7 +169,7 @@ pub fn run(tube: Tube, algorithm: &str, slide: f64, steps: usize) -> BlockInHalf
         text.contains(&format!("steps = {steps}\n")) && text.contains(algorithm),
         "case text not as expected:\n{text}"
     );
-    let (out, history) = run_toml_with_history(&text);
+    let (out, history) = run_toml_in_with_history(&text, Some(&dir));
     let mut cost = RunCost::of(&out);
     cost.cells = out
         .bodies

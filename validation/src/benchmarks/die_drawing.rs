@@ -5,7 +5,7 @@
 //! exit radius r2 = 0.015 m (entry arc R = 0.15 m). One-cell wedge of ±2.5°.
 //! The pulling force against the steady drawing force of eq. 5.1.
 use super::{read_case, swap_master_slave, RunCost};
-use crate::run_toml_with_history;
+use crate::run_toml_in_with_history;
 
 /// Cylinder radius r1, m.
 pub const R1: f64 = 0.025;
@@ -85,10 +85,8 @@ pub fn run(file: &str, end: f64, swapped: bool) -> DieRun {
     if swapped {
         text = swap_master_slave(&text, "die/contact", "cylinder/outer");
     }
-    // mesh files by absolute path (the history run writes into a temporary folder)
-    text = text.replace("file = \"", &format!("file = \"{}/", dir.display()));
     text = shorten(&text, end);
-    let (out, history) = run_toml_with_history(&text);
+    let (out, history) = run_toml_in_with_history(&text, Some(&dir));
     let wedge = solver_app::results::wedge_of(&out.bodies);
     let angle = wedge.map_or(0.0, |w| w.1);
     let factor = std::f64::consts::TAU / angle.max(f64::MIN_POSITIVE);

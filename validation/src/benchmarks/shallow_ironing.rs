@@ -7,8 +7,8 @@
 //! oscillates while the block slides.
 use std::path::Path;
 
-use super::{read_case, swap_master_slave, RunCost};
-use crate::run_toml_with_history;
+use super::{cases_dir, read_case, swap_master_slave, RunCost};
+use crate::run_toml_in_with_history;
 
 /// μ_g = H/V at t = 1.5 of the thesis (table 5.2).
 pub const MU_G_THESIS: f64 = 0.32;
@@ -135,15 +135,9 @@ impl Ironing {
 }
 
 /// The case text for `opts`: the time intervals, coupling and master
-/// choice edited, the block mesh path made absolute (the run writes into
-/// a temporary folder).
+/// choice edited (its mesh path is relative to the shipped case's folder).
 pub fn case_text(opts: &Options) -> String {
-    let (dir, mut text) = read_case("shallow-ironing", "case.toml");
-    let mesh = dir.join("block.msh");
-    text = text.replace(
-        "file = \"block.msh\"",
-        &format!("file = {:?}", mesh.display().to_string()),
-    );
+    let (_, mut text) = read_case("shallow-ironing", "case.toml");
     let intervals = if opts.until <= 1.0 {
         let n = (opts.indentation_steps as f64 * opts.until)
             .round()
@@ -170,7 +164,8 @@ pub fn case_text(opts: &Options) -> String {
 
 /// Runs the case with `opts`.
 pub fn run(opts: &Options) -> Ironing {
-    let (out, history) = run_toml_with_history(&case_text(opts));
+    let (out, history) =
+        run_toml_in_with_history(&case_text(opts), Some(&cases_dir().join("shallow-ironing")));
     Ironing {
         time: history.column("time"),
         horizontal: history.column("block/top:Fx"),

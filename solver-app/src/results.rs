@@ -79,6 +79,12 @@ pub fn history_columns(bodies: &[Body], contacts: &ContactSet) -> Vec<String> {
     for c in &contacts.interfaces {
         cols.push(format!("{}:normal_force", c.slave_name));
     }
+    // beyond CASE_FORMAT.md, after its columns: the area in contact, so
+    // that the mean pressure F_n/A (and the mean penetration F_n/(ε_n A)
+    // of the linear penalty, eq. 4.4a) can be followed
+    for c in &contacts.interfaces {
+        cols.push(format!("{}:contact_area", c.slave_name));
+    }
     cols
 }
 
@@ -97,6 +103,9 @@ pub fn history_row(
     }
     for c in &contacts.interfaces {
         row.push(c.stats.normal_force);
+    }
+    for c in &contacts.interfaces {
+        row.push(c.stats.contact_area);
     }
     row
 }

@@ -7,22 +7,55 @@
 //! compared with the published curves (Abaqus, FEBio, Areias,
 //! Puso–Laursen).
 //!
-//! The mesh is the benchmark's own coarse mesh (thesis: inner sphere 500,
-//! outer 180 cells), an OpenFOAM polyMesh in `../shared`; it is extracted
-//! at run time into a temporary folder (never copied into the project), so
-//! these runs need `../shared`.
+//! Meshes: the shipped cases use the built-in `spherical-shell` generator
+//! (coarse `case.toml`, fine `fine.toml`); [`Mesh::Benchmark`] runs the
+//! benchmark's own coarse polyMesh (thesis: inner sphere 500, outer 180
+//! cells) from `../shared`, extracted at run time into a temporary folder
+//! (never copied into the project).
 use std::path::{Path, PathBuf};
 
 use super::{read_case, swap_master_slave, RunCost};
 use crate::run_toml_in_with_history;
 
-/// The sphere–sphere pair as shipped: outer sphere's inner surface master.
-pub const MASTER: &str = "outer/R_bottom";
-/// The slave of the sphere–sphere pair as shipped: inner sphere's outer surface.
-pub const SLAVE: &str = "inner/r_top";
-/// History column of the force: the normal force of the moving plate's
-/// contact (rigid plate master, so it is the force on the outer sphere).
-pub const FORCE_COLUMN: &str = "outer/R_top:normal_force";
+/// Which mesh to run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Mesh {
+    /// `case.toml`: generated, inner 540 and outer 192 cells.
+    Coarse,
+    /// `fine.toml`: generated, inner 2,400 and outer 1,500 cells.
+    Fine,
+    /// `polymesh.toml`: the benchmark's polyMesh from `../shared` (inner
+    /// 500, outer 180 cells).
+    Benchmark,
+}
+
+impl Mesh {
+    /// Case file, sphere–sphere master and slave, and the force column
+    /// (the normal force of the moving plate's contact: rigid plate
+    /// master, so the force on the outer sphere).
+    fn names(self) -> (&'static str, &'static str, &'static str, &'static str) {
+        match self {
+            Mesh::Coarse => (
+                "case.toml",
+                "outer/inner",
+                "inner/outer",
+                "outer/outer:normal_force",
+            ),
+            Mesh::Fine => (
+                "fine.toml",
+                "outer/inner",
+                "inner/outer",
+                "outer/outer:normal_force",
+            ),
+            Mesh::Benchmark => (
+                "polymesh.toml",
+                "outer/R_bottom",
+                "inner/r_top",
+                "outer/R_top:normal_force",
+            ),
+        }
+    }
+}
 /// Acceptance of the benchmark: within 5 % of Abaqus/FEBio before buckling.
 pub const TOLERANCE: f64 = 0.05;
 
@@ -36,6 +69,8 @@ pub struct Options {
     pub friction: f64,
     /// Inner sphere master, outer sphere slave on the sphere–sphere pair.
     pub swapped: bool,
+    /// Which mesh.
+    pub mesh: Mesh,
 }
 
 impl Default for Options {
@@ -45,6 +80,7 @@ impl Default for Options {
             until: 9.0,
             friction: 0.0,
             swapped: false,
+            mesh: Mesh::Coarse,
         }
     }
 }
@@ -98,19 +134,21 @@ impl Spheres {
     }
 }
 
-/// The case text for `opts` (the polyMesh path is relative: run it in the
-/// folder the mesh was extracted to).
-pub fn case_text(opts: &Options) -> String {
-    let (_, mut text) = read_case("concentric-spheres", "polymesh.toml");
+/// The case text for `opts` and the folder its mesh paths are relative
+/// to (that of the shipped case; the polyMesh one is run in the folder
+/// the mesh was extracted to).
+pub fn case_text(opts: &Options) -> (PathBuf, String) {
+    let (file, master, slave, _) = opts.mesh.names();
+    let (dir, mut text) = read_case("concentric-spheres", file);
     let steps = (opts.until * 10.0).round().max(1.0);
     text = text
         .replace("end = 9.0", &format!("end = {}", opts.until))
         .replace("steps = 90", &format!("steps = {steps}"))
         .replace("friction = 0.0", &format!("friction = {:?}", opts.friction));
     if opts.swapped {
-        text = swap_master_slave(&text, MASTER, SLAVE);
+        text = swap_master_slave(&text, master, slave);
     }
-    text
+    (dir, text)
 }
 
 /// Extracts `../shared/benchmarks/concentric-spheres/mesh/verycoarse.tar.xz`
@@ -140,15 +178,26 @@ pub fn extract_mesh(shared: &Path) -> Result<PathBuf, String> {
     Ok(dir)
 }
 
-/// Runs the case with `opts` on the benchmark mesh from `shared`.
-pub fn run(shared: &Path, opts: &Options) -> Result<Spheres, String> {
-    let dir = extract_mesh(shared)?;
-    let (out, history) = run_toml_in_with_history(&case_text(opts), Some(&dir));
-    // the extracted mesh is only needed while the run reads it
-    let _ = std::fs::remove_dir_all(&dir);
+/// Runs the case with `opts`; [`Mesh::Benchmark`] needs `shared`
+/// (`../shared`, an error without it).
+pub fn run(opts: &Options, shared: Option<&Path>) -> Result<Spheres, String> {
+    let (case_dir, text) = case_text(opts);
+    let extracted = match opts.mesh {
+        Mesh::Benchmark => {
+            let shared = shared.ok_or("the benchmark mesh needs ../shared")?;
+            Some(extract_mesh(shared)?)
+        }
+        _ => None,
+    };
+    let (out, history) =
+        run_toml_in_with_history(&text, Some(extracted.as_deref().unwrap_or(&case_dir)));
+    if let Some(dir) = &extracted {
+        // the extracted mesh is only needed while the run reads it
+        let _ = std::fs::remove_dir_all(dir);
+    }
     Ok(Spheres {
         displacement: history.column("time"),
-        force: history.column(FORCE_COLUMN),
+        force: history.column(opts.mesh.names().3),
         outer_iterations: history
             .column("outer_iterations")
             .iter()

@@ -192,7 +192,9 @@ mod tests {
                     free += 1;
                     assert_eq!(*v, Vector::new(0.3, -0.2, 0.5));
                 }
-                PointConstraint::Line(_) => panic!("the end planes do not meet in the mesh"),
+                PointConstraint::Line(_) | PointConstraint::Fixed => {
+                    panic!("the end planes do not meet in the mesh")
+                }
             }
         }
         // 3 radial × 3 axial points on each end, 2 × 9 interior ones
@@ -232,5 +234,52 @@ mod tests {
             }
         }
         assert_eq!(lines, 3);
+    }
+
+    #[test]
+    fn a_point_on_three_planes_is_fixed() {
+        let mesh = box_mesh(
+            Vector::zeros(),
+            Vector::new(1.0, 1.0, 1.0),
+            [2, 2, 2],
+            [1.0; 3],
+        )
+        .expect("box");
+        let geom = MeshGeometry::new(&mesh).expect("geometry");
+        let planes: Vec<usize> = ["xmin", "ymin", "zmax"]
+            .iter()
+            .map(|n| mesh.patch_index(n).expect("patch"))
+            .collect();
+        let c = WedgePointConstraint::new(&mesh, &geom, &planes).expect("patches");
+        let mut d = vec![Vector::new(0.3, -0.2, 0.5); mesh.n_points()];
+        c.apply_all(&mut d);
+        let mut fixed = 0;
+        for (x, v) in mesh.points.iter().zip(&d) {
+            if x.x == 0.0 && x.y == 0.0 && x.z == 1.0 {
+                fixed += 1;
+                assert_eq!(*v, Vector::zeros());
+            } else if x.x == 0.0 && x.y == 0.0 {
+                assert!((v - Vector::new(0.0, 0.0, 0.5)).norm() < 1e-15, "{v}");
+            } else if x.x == 0.0 && x.z == 1.0 {
+                assert!((v - Vector::new(0.0, -0.2, 0.0)).norm() < 1e-15, "{v}");
+            }
+        }
+        assert_eq!(fixed, 1);
+    }
+
+    #[test]
+    fn flat_patches_are_planar_curved_ones_are_not() {
+        let mesh = annulus_mesh(1.0, 2.0, 0.0, 1.0, 0.0, 1.0, [2, 4, 1], 1.0).expect("annulus");
+        let geom = MeshGeometry::new(&mesh).expect("geometry");
+        let planar: Vec<(String, bool)> = mesh
+            .patches
+            .iter()
+            .enumerate()
+            .map(|(i, p)| (p.name.clone(), is_planar_patch(&mesh, &geom, i)))
+            .collect();
+        for (name, is) in &planar {
+            let curved = name == "inner" || name == "outer";
+            assert_eq!(*is, !curved, "{name}: {planar:?}");
+        }
     }
 }

@@ -415,8 +415,7 @@ fn build_body(
     // their planes when the mesh moves (fv_mesh::wedge_point_constraint)
     let mut constraining = wedge_patches.clone();
     constraining.extend(patch_specs.iter().enumerate().filter_map(|(i, s)| {
-        (matches!(s, Some(BoundarySpec::Symmetry)) && is_planar_patch(&mesh, &geom, i))
-            .then_some(i)
+        (matches!(s, Some(BoundarySpec::Symmetry)) && is_planar_patch(&mesh, &geom, i)).then_some(i)
     }));
     let wedge_points = WedgePointConstraint::new(&mesh, &geom, &constraining);
     let mut conditions = Vec::with_capacity(mesh.patches.len());

@@ -33,7 +33,7 @@ pub use material::{MaterialModel, MaterialSpec};
 pub use mesh::{MeshSpec, GENERATORS};
 pub use settings::{
     Acceleration, Analysis, AnalysisKind, LinearMethod, LinearSettings, OnNonConvergence,
-    OutputSettings, SolverSettings, StrainKind, TimeControl,
+    OutputSettings, Predictor, SolverSettings, StrainKind, TimeControl,
 };
 pub use source::CaseSource;
 pub use values::{Rotation, ScalarValue, VectorValue};
@@ -177,9 +177,10 @@ fn build(t: &Table<'_>, source: CaseSource) -> Res<Case> {
             ))
         }
     };
+    let solver_defaults = SolverSettings::for_analysis(&analysis);
     let solver = match t.get("solver") {
-        Some(a) => settings::solver(&a.node().table()?)?,
-        None => SolverSettings::default(),
+        Some(a) => settings::solver(&a.node().table()?, &solver_defaults)?,
+        None => solver_defaults,
     };
 
     let body_entry = t.get("body");

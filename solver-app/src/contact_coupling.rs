@@ -9,6 +9,7 @@ use crate::case::{
     Case, ContactAlgorithm as AlgorithmName, Coupling as CouplingName, Detection, InputError,
 };
 use crate::model::Body;
+use crate::profile::Phase;
 use contact_detect::{CandidatePairs, DetectParams, DetectionMethod, Detector};
 use contact_force::{
     ContactAlgorithm, ContactAlgorithmKind, ContactLaw, ContactStats, ContactTractions, Coupling,
@@ -282,6 +283,8 @@ pub struct ContactSet {
     cell_to_point: Vec<Option<CellToPoint>>,
     /// Contact updates in the current increment (attempt).
     updates_in_increment: usize,
+    /// Seconds in detection and in the contact force.
+    pub times: crate::profile::PhaseTimes,
 }
 
 fn side(
@@ -392,6 +395,7 @@ impl ContactSet {
             interfaces: Vec::new(),
             cell_to_point: (0..bodies.len()).map(|_| None).collect(),
             updates_in_increment: 0,
+            times: Default::default(),
         };
         for (ci, c) in case.contacts.iter().enumerate() {
             let key = format!("contact[{ci}]");
@@ -641,6 +645,7 @@ impl ContactSet {
             1.0
         };
         for ci in &mut self.interfaces {
+            let start = std::time::Instant::now();
             ci.coupling
                 .set_tangential_factor(ci.tangential_relaxation * damping);
             Self::move_side(&mut ci.master, bodies, &self.cell_to_point);
@@ -648,6 +653,7 @@ impl ContactSet {
             ci.detector
                 .detect(&ci.master.surface, &ci.slave.surface, &mut ci.pairs)
                 .map_err(|e| format!("contact {}: detection: {e}", ci.slave_name))?;
+            let force_start = self.times.lap(Phase::ContactDetection, start);
             if !ci.penalty_localised && !ci.pairs.is_empty() {
                 // first detection of the increment: penalty of the contacting faces
                 if let Ok(law) = penalty_law(
@@ -765,6 +771,7 @@ impl ContactSet {
                     _ => {}
                 }
             }
+            self.times.lap(Phase::ContactForce, force_start);
         }
         Ok(max_change)
     }

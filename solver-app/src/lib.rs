@@ -18,6 +18,8 @@ pub mod field_output;
 pub mod mesh_loading;
 pub mod model;
 pub mod output;
+pub mod predictor;
+pub mod profile;
 pub mod results;
 pub mod run;
 pub mod segregated;

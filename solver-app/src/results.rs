@@ -210,6 +210,8 @@ pub struct Summary {
     pub cells: usize,
     /// Why the run failed, if it did.
     pub failure: Option<String>,
+    /// Seconds per phase of the solution (after at least one increment).
+    pub profile: Option<crate::profile::PhaseTimes>,
 }
 
 /// Writes `summary.json` (atomically: temp file + rename).
@@ -253,6 +255,13 @@ pub fn write_summary(
     });
     if let Some(reason) = &s.failure {
         v["failure"] = serde_json::Value::String(reason.clone());
+    }
+    if let Some(times) = &s.profile {
+        let mut seconds = serde_json::Map::new();
+        for p in crate::profile::Phase::ALL {
+            seconds.insert(p.name().to_owned(), serde_json::json!(times.get(p)));
+        }
+        v["profile_seconds"] = serde_json::Value::Object(seconds);
     }
     let path = dir.join("summary.json");
     let tmp = dir.join("summary.json.tmp");

@@ -76,11 +76,15 @@ fn accept_increment(
     linear: &crate::case::LinearSettings,
     meshes_move: bool,
 ) -> Result<(), SolveError> {
+    let start = std::time::Instant::now();
     for b in bodies.iter_mut() {
         b.end_increment().map_err(SolveError::Material)?;
     }
     if meshes_move {
         contacts.end_increment(bodies);
+    }
+    solver.times.lap(crate::profile::Phase::MeshMotion, start);
+    if meshes_move {
         solver.assemble_and_factorise(bodies, linear)?;
     }
     Ok(())
@@ -216,6 +220,7 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
                 }
             }
             dt_prev = dt_k;
+            solver.set_step(t1 - t0);
             let attempt = solver.solve_increment(&mut bodies, &mut contacts, |outer, res| {
                 if trace_outer {
                     eprintln!("  outer {outer}: residual {res:.3e}");
@@ -372,6 +377,10 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
             summary.outer_iterations as f64 / summary.increments.max(1) as f64,
             summary.linear_iterations
         ));
+        let mut times = solver.times;
+        times.merge(&contacts.times);
+        log.info(&times.report(solve_seconds));
+        summary.profile = Some(times);
     }
     if let Some(w) = fields.take() {
         w.close().map_err(out_err)?;

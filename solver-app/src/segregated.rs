@@ -2,11 +2,14 @@
 //! system for all deformable bodies, outer (Picard) iterations, and one
 //! linear solve per displacement component.
 use crate::anderson::AndersonAcceleration;
-use crate::case::{Acceleration, LinearMethod, LinearSettings, SolverSettings};
+use crate::case::{Acceleration, LinearMethod, LinearSettings, Predictor, SolverSettings};
 use crate::contact_coupling::{CellSpring, ContactSet};
 use crate::model::Body;
+use crate::predictor::LinearPredictor;
+use crate::profile::{Phase, PhaseTimes};
 use fv_discretise::{CsrMatrix, FaceSlots, LinearSolver, LinearSolverError, MomentumParams};
 use fv_mesh::Vector;
+use std::time::Instant;
 
 /// Smallest reference of the relative residual, as a fraction of the total
 /// displacement norm (see [`SegregatedSolver::outer_iteration`]).
@@ -105,6 +108,10 @@ pub struct SegregatedSolver {
     anderson: Option<AndersonAcceleration>,
     /// Stacked displacement (workspace of the acceleration).
     u_work: Vec<Vector>,
+    /// First iterate of an increment (`solver.predictor = "linear"`).
+    predictor: Option<LinearPredictor>,
+    /// Seconds per phase (the contact phases are in the contact set's).
+    pub times: PhaseTimes,
 }
 
 fn make_solver(s: &LinearSettings, n: usize) -> Box<dyn LinearSolver + Send> {
@@ -224,6 +231,19 @@ impl SegregatedSolver {
                 Acceleration::None => Vec::new(),
                 Acceleration::Anderson => vec![Vector::zeros(); n],
             },
+            predictor: match settings.predictor {
+                Predictor::None => None,
+                Predictor::Linear => Some(LinearPredictor::new(n)),
+            },
+            times: PhaseTimes::default(),
+        }
+    }
+
+    /// Sets the size of the step the next [`Self::solve_increment`] solves
+    /// (used by the predictor).
+    pub fn set_step(&mut self, step: f64) {
+        if let Some(p) = &mut self.predictor {
+            p.set_step(step);
         }
     }
 
@@ -240,6 +260,17 @@ impl SegregatedSolver {
     /// Assembles the implicit (2μ+λ) Laplacian (eq. 3.29, a_P and a_N) and
     /// factorises it: one factorisation per distinct component diagonal.
     pub fn assemble_and_factorise(
+        &mut self,
+        bodies: &[Body],
+        linear: &LinearSettings,
+    ) -> Result<(), SolveError> {
+        let start = Instant::now();
+        let result = self.assemble_and_factorise_untimed(bodies, linear);
+        self.times.lap(Phase::MatrixAssembly, start);
+        result
+    }
+
+    fn assemble_and_factorise_untimed(
         &mut self,
         bodies: &[Body],
         linear: &LinearSettings,
@@ -452,9 +483,14 @@ impl SegregatedSolver {
 
     /// Records the displacement at the start of an increment (the reference
     /// of the relative residual).
-    pub fn begin_increment(&mut self, bodies: &[Body]) {
+    pub fn begin_increment(&mut self, bodies: &mut [Body]) {
         for b in bodies.iter().filter(|b| !b.rigid) {
             self.u_start[b.offset..b.offset + b.mesh.n_cells].copy_from_slice(&b.momentum.u);
+        }
+        if let Some(p) = &self.predictor {
+            for b in bodies.iter_mut().filter(|b| !b.rigid) {
+                p.predict(b.offset, &mut b.momentum.u);
+            }
         }
         if let Some(a) = &mut self.anderson {
             a.restart();
@@ -474,14 +510,18 @@ impl SegregatedSolver {
         if !contacts.is_empty() {
             // boundary values consistent with the last solve, so that the
             // contact surfaces (and u_b* of eq. 4.52) are not one step behind
+            let start = Instant::now();
             contacts.track_opposite_cells(bodies);
             for b in bodies.iter_mut().filter(|b| !b.rigid) {
                 let m = &mut b.momentum;
                 m.update_boundary_values(&b.mesh, &b.geom);
             }
+            self.times.lap(Phase::BoundaryValues, start);
             contacts.update(bodies).map_err(SolveError::Contact)?;
             if contacts.is_implicit() {
+                let start = Instant::now();
                 self.refactorise_with_contact(bodies, contacts)?;
+                self.times.lap(Phase::MatrixAssembly, start);
             }
         }
         self.update_fields(bodies)?;
@@ -496,7 +536,9 @@ impl SegregatedSolver {
                 }
             }
             self.x.iter_mut().for_each(|x| *x = 0.0);
+            let start = Instant::now();
             let si = self.solvers[mi].solve(&self.matrices[mi], &self.rhs, &mut self.x)?;
+            self.times.lap(Phase::LinearSolve, start);
             linear_iterations += si.iterations;
             for (d, &x) in self.delta.iter_mut().zip(&self.x) {
                 d[c] = x;
@@ -544,12 +586,16 @@ impl SegregatedSolver {
     /// Returns a description of the first cell the current iterate inverts,
     /// if any (its previous stress is kept; see
     /// [`fv_discretise::SolidMomentum::update_gradient_and_stress`]).
-    pub fn update_fields(&self, bodies: &mut [Body]) -> Result<Option<String>, SolveError> {
+    pub fn update_fields(&mut self, bodies: &mut [Body]) -> Result<Option<String>, SolveError> {
         let mut inverted = None;
         for b in bodies.iter_mut().filter(|b| !b.rigid) {
             let m = &mut b.momentum;
+            let start = Instant::now();
             m.update_boundary_values(&b.mesh, &b.geom);
-            if let Some((cell, jacobian)) = m.update_gradient_and_stress(&b.mesh) {
+            let start = self.times.lap(Phase::BoundaryValues, start);
+            let bad = m.update_gradient_and_stress(&b.mesh);
+            let start = self.times.lap(Phase::GradientAndStress, start);
+            if let Some((cell, jacobian)) = bad {
                 inverted.get_or_insert_with(|| {
                     format!(
                         "body '{}': cell {cell}: relative Jacobian det f = {jacobian:.3e} is not positive (the increment inverts the cell; use more steps)",
@@ -558,6 +604,7 @@ impl SegregatedSolver {
                 });
             }
             m.compute_residual(&b.mesh, &b.geom, &self.params);
+            self.times.lap(Phase::ResidualAssembly, start);
         }
         Ok(inverted)
     }
@@ -615,6 +662,13 @@ impl SegregatedSolver {
         }
         if info.converged {
             contacts.commit_increment();
+            if let Some(p) = &mut self.predictor {
+                for b in bodies.iter().filter(|b| !b.rigid) {
+                    let range = b.offset..b.offset + b.mesh.n_cells;
+                    p.record(b.offset, &b.momentum.u, &self.u_start[range]);
+                }
+                p.close_record();
+            }
         }
         Ok(info)
     }

@@ -116,6 +116,18 @@ pub enum Acceleration {
     Anderson,
 }
 
+/// `solver.predictor`: the first iterate of an increment.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Predictor {
+    /// `"none"`: the displacement of the end of the last increment (the
+    /// thesis).
+    None,
+    /// `"linear"`: that displacement plus the last accepted increment's
+    /// change, scaled by the ratio of the step sizes (linear extrapolation
+    /// in time). Only the first iterate changes, not the converged result.
+    Linear,
+}
+
 /// `solver.linear.method`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum LinearMethod {
@@ -167,6 +179,9 @@ pub struct SolverSettings {
     pub acceleration: Acceleration,
     /// Iterates mixed by Anderson acceleration (1–20, default 5).
     pub acceleration_depth: usize,
+    /// First iterate of each increment (default linear under large strain,
+    /// none otherwise).
+    pub predictor: Predictor,
 }
 
 impl Default for SolverSettings {
@@ -180,6 +195,7 @@ impl Default for SolverSettings {
             rhie_chow: 0.1,
             acceleration: Acceleration::None,
             acceleration_depth: 5,
+            predictor: Predictor::None,
         }
     }
 }
@@ -329,7 +345,20 @@ fn tolerance(n: &super::reader::Node<'_>) -> Res<f64> {
     n.f64_if(|x| x > 0.0 && x < 1.0, "satisfy 0 < tolerance < 1")
 }
 
-pub(crate) fn solver(t: &Table<'_>) -> Res<SolverSettings> {
+impl SolverSettings {
+    /// The defaults for `analysis`: as [`Default`], with the linear
+    /// predictor under large strain (where it halves the outer iterations
+    /// of curved beams and die drawing at unchanged results).
+    pub fn for_analysis(analysis: &Analysis) -> Self {
+        let mut s = Self::default();
+        if analysis.strain == StrainKind::Large {
+            s.predictor = Predictor::Linear;
+        }
+        s
+    }
+}
+
+pub(crate) fn solver(t: &Table<'_>, defaults: &SolverSettings) -> Res<SolverSettings> {
     t.deny_unknown(&[
         "tolerance",
         "max_outer",
@@ -339,8 +368,9 @@ pub(crate) fn solver(t: &Table<'_>) -> Res<SolverSettings> {
         "rhie_chow",
         "acceleration",
         "acceleration_depth",
+        "predictor",
     ])?;
-    let d = SolverSettings::default();
+    let d = *defaults;
     let linear = match t.get("linear") {
         None => d.linear,
         Some(l) => {
@@ -385,6 +415,12 @@ pub(crate) fn solver(t: &Table<'_>) -> Res<SolverSettings> {
                 )));
             }
             Ok(m)
+        })?,
+        predictor: t.opt("predictor", d.predictor, |n| {
+            n.choice(
+                "increment predictor",
+                &[("none", Predictor::None), ("linear", Predictor::Linear)],
+            )
         })?,
     })
 }

@@ -112,6 +112,7 @@ on_nonconvergence = "continue"
 rhie_chow = 0
 acceleration = "anderson"
 acceleration_depth = 8
+predictor = "linear"
 [solver.linear]
 method = "bicgstab-ilu"
 tolerance = 1e-3
@@ -143,12 +144,13 @@ every = 5
             rhie_chow: 0.0,
             acceleration: Acceleration::Anderson,
             acceleration_depth: 8,
+            predictor: Predictor::Linear,
         }
     );
     assert_eq!(c.bodies[0].material.rho, Some(7800.0));
     assert_eq!(c.output.directory, PathBuf::from("out/dir"));
     assert_eq!(c.output.every, 5);
-    assert_eq!(c.source.line_of("solver.linear.method"), Some(18));
+    assert_eq!(c.source.line_of("solver.linear.method"), Some(19));
 
     let direct = text.replace("bicgstab-ilu", "direct");
     assert_eq!(parse(&direct).solver.linear.method, LinearMethod::Direct);
@@ -376,6 +378,20 @@ fn mesh_errors() {
     assert!(e.message.contains("limit"), "{e}");
     let e = shell(r#", cells = [2, 4]"#);
     assert_eq!(e.key.as_deref(), Some("body[0].mesh.part"));
+}
+
+#[test]
+fn predictor_default_follows_the_strain() {
+    assert_eq!(parse(MIN).solver.predictor, Predictor::None);
+    let large = MIN.replace("[time]", "[analysis]\nstrain = \"large\"\n[time]");
+    assert_eq!(parse(&large).solver.predictor, Predictor::Linear);
+    let with_solver = format!("{large}[solver]\ntolerance = 1e-7\n");
+    assert_eq!(parse(&with_solver).solver.predictor, Predictor::Linear);
+    let off = format!("{large}[solver]\npredictor = \"none\"\n");
+    assert_eq!(parse(&off).solver.predictor, Predictor::None);
+    let e = fail(&format!("{large}[solver]\npredictor = \"quadratic\"\n"));
+    assert_eq!(e.key.as_deref(), Some("solver.predictor"));
+    assert!(e.message.contains("\"linear\""), "{e}");
 }
 
 #[test]

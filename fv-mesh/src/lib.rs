@@ -31,7 +31,7 @@ pub use openfoam::{face_connected_regions, read_polymesh, select_body};
 pub use poly_mesh::{CellZone, Patch, PolyMesh};
 pub use quality::MeshQuality;
 pub use surface::{PointNormalWeighting, Surface, NO_FACE};
-pub use wedge_point_constraint::{PointConstraint, WedgePointConstraint};
+pub use wedge_point_constraint::{is_planar_patch, PointConstraint, WedgePointConstraint};
 
 /// Scalar type used everywhere.
 pub type Real = f64;

@@ -5,7 +5,9 @@ use fv_discretise::{wedge_rotations, Inertia, PatchCondition, SolidMomentum, Str
 use fv_materials::{
     Hardening, LargeStrainMaterial, LinearElastic, NeoHookean, NeoHookeanPlastic, StVenantKirchhoff,
 };
-use fv_mesh::{CellToPoint, MeshGeometry, PolyMesh, Tensor, Vector, WedgePointConstraint};
+use fv_mesh::{
+    is_planar_patch, CellToPoint, MeshGeometry, PolyMesh, Tensor, Vector, WedgePointConstraint,
+};
 
 /// Relative tolerance of a force-controlled patch: the patch force must
 /// be within this fraction of the target force (Algorithm 1, line 1).
@@ -129,9 +131,10 @@ pub struct Body {
     /// Cell-to-point interpolation that moves the mesh at the end of every
     /// increment (updated Lagrangian only, eqs. 3.31–3.32).
     mesh_motion: Option<CellToPoint>,
-    /// Points of the wedge planes keep to their planes, points of the axis
-    /// to the axis, whenever points are moved (mesh motion, contact
-    /// surfaces, output); `None` without wedge patches.
+    /// Points of the wedge planes and of planar symmetry patches keep to
+    /// their planes, points on two of them to their common line,
+    /// whenever points are moved (mesh motion, contact surfaces, output);
+    /// `None` without such patches.
     pub wedge_points: Option<WedgePointConstraint>,
     /// Point displacement of the increment (workspace of the mesh motion).
     point_du: Vec<Vector>,
@@ -408,7 +411,13 @@ fn build_body(
             e.to_string(),
         )
     })?;
-    let wedge_points = WedgePointConstraint::new(&mesh, &geom, &wedge_patches);
+    // the points of wedge planes and of planar symmetry patches stay in
+    // their planes when the mesh moves (fv_mesh::wedge_point_constraint)
+    let mut constraining = wedge_patches.clone();
+    constraining.extend(patch_specs.iter().enumerate().filter_map(|(i, s)| {
+        (matches!(s, Some(BoundarySpec::Symmetry)) && is_planar_patch(&mesh, &geom, i)).then_some(i)
+    }));
+    let wedge_points = WedgePointConstraint::new(&mesh, &geom, &constraining);
     let mut conditions = Vec::with_capacity(mesh.patches.len());
     for (pi, s) in patch_specs.iter().enumerate() {
         let n = mesh.patches[pi].size;

@@ -3,6 +3,7 @@
 //! and the validation report plots them.
 pub mod block_in_half_tube;
 pub mod concentric_cylinders;
+pub mod concentric_spheres;
 pub mod coupling_efficiency;
 pub mod die_drawing;
 pub mod flat_punch;

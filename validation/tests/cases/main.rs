@@ -6,6 +6,7 @@
 mod block_in_half_tube;
 mod cantilever;
 mod concentric_cylinders;
+mod concentric_spheres;
 mod contact_patch;
 mod die_drawing;
 mod dynamics;

@@ -1,0 +1,293 @@
+//! concentric-spheres (thesis §5.3.4, figs. 5.24–5.27; issue 7): two
+//! hollow neo-Hookean half-spheres (r 10–12 inside r 12–14, E = 1 MPa,
+//! ν = 0.3, mm) standing on their rims on a rigid plane, the outer one
+//! pushed at its pole by a rigid plate 9 mm in 90 increments; quarter
+//! model; μ between the spheres 0 or 0.5, the plates frictionless.
+//! Measured: the force on the moving plate against its displacement u_z,
+//! compared with the published curves (Abaqus, FEBio, Areias,
+//! Puso–Laursen).
+//!
+//! Meshes: the shipped cases use the built-in `spherical-shell` generator
+//! (coarse `case.toml`, fine `fine.toml`); [`Mesh::Benchmark`] runs the
+//! benchmark's own coarse polyMesh (thesis: inner sphere 500, outer 180
+//! cells) from `../shared`, extracted at run time into a temporary folder
+//! (never copied into the project).
+use std::path::{Path, PathBuf};
+
+use super::{read_case, swap_master_slave, RunCost};
+use crate::run_toml_in_with_history;
+
+/// Which mesh to run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Mesh {
+    /// `case.toml`: generated, inner 540 and outer 192 cells.
+    Coarse,
+    /// `fine.toml`: generated, inner 2,400 and outer 1,500 cells.
+    Fine,
+    /// `polymesh.toml`: the benchmark's polyMesh from `../shared` (inner
+    /// 500, outer 180 cells).
+    Benchmark,
+}
+
+impl Mesh {
+    /// Case file, sphere–sphere master and slave, and the force column
+    /// (the normal force of the moving plate's contact: rigid plate
+    /// master, so the force on the outer sphere).
+    fn names(self) -> (&'static str, &'static str, &'static str, &'static str) {
+        match self {
+            Mesh::Coarse => (
+                "case.toml",
+                "outer/inner",
+                "inner/outer",
+                "outer/outer:normal_force",
+            ),
+            Mesh::Fine => (
+                "fine.toml",
+                "outer/inner",
+                "inner/outer",
+                "outer/outer:normal_force",
+            ),
+            Mesh::Benchmark => (
+                "polymesh.toml",
+                "outer/R_bottom",
+                "inner/r_top",
+                "outer/R_top:normal_force",
+            ),
+        }
+    }
+}
+/// Acceptance of the benchmark: within 5 % of Abaqus/FEBio before buckling.
+pub const TOLERANCE: f64 = 0.05;
+
+/// How to run the case.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Options {
+    /// Plate travel at the end of the run, mm (9 as in the thesis); the
+    /// increment stays 0.1 mm.
+    pub until: f64,
+    /// Coulomb μ between the spheres (0 or 0.5 in the thesis).
+    pub friction: f64,
+    /// Inner sphere master, outer sphere slave on the sphere–sphere pair.
+    pub swapped: bool,
+    /// Which mesh.
+    pub mesh: Mesh,
+}
+
+impl Default for Options {
+    /// The frictionless case as shipped (9 mm, 90 increments).
+    fn default() -> Self {
+        Options {
+            until: 9.0,
+            friction: 0.0,
+            swapped: false,
+            mesh: Mesh::Coarse,
+        }
+    }
+}
+
+/// What one run measured, one entry per increment.
+#[derive(Debug, Clone, Default)]
+pub struct Spheres {
+    /// Plate displacement u_z of each increment, mm (= time).
+    pub displacement: Vec<f64>,
+    /// Force on the plate, N (quarter model, as the references).
+    pub force: Vec<f64>,
+    /// Outer iterations of each increment.
+    pub outer_iterations: Vec<usize>,
+    /// Every increment converged.
+    pub converged: bool,
+    /// The failure message, if any.
+    pub failure: Option<String>,
+    /// Cost of the run.
+    pub cost: RunCost,
+}
+
+/// Linear interpolation of `(xs, ys)` (xs increasing) at `x`; NaN outside.
+fn interpolate(xs: &[f64], ys: &[f64], x: f64) -> f64 {
+    let i = xs.partition_point(|&v| v < x);
+    if i < xs.len() && (xs[i] - x).abs() <= 1e-9 * x.abs().max(1.0) {
+        return ys[i];
+    }
+    if i == 0 || i >= xs.len() {
+        return f64::NAN;
+    }
+    let (x0, x1, y0, y1) = (xs[i - 1], xs[i], ys[i - 1], ys[i]);
+    y0 + (y1 - y0) * (x - x0) / (x1 - x0)
+}
+
+impl Spheres {
+    /// Force at plate displacement `u` (linear between increments; NaN
+    /// outside the run).
+    pub fn force_at(&self, u: f64) -> f64 {
+        interpolate(&self.displacement, &self.force, u)
+    }
+
+    /// Plate displacement of the last converged increment, mm.
+    pub fn reached(&self) -> f64 {
+        self.displacement.last().copied().unwrap_or(0.0)
+    }
+
+    /// Mean outer iterations per increment.
+    pub fn mean_outer(&self) -> f64 {
+        self.outer_iterations.iter().sum::<usize>() as f64
+            / self.outer_iterations.len().max(1) as f64
+    }
+}
+
+/// The case text for `opts` and the folder its mesh paths are relative
+/// to (that of the shipped case; the polyMesh one is run in the folder
+/// the mesh was extracted to).
+pub fn case_text(opts: &Options) -> (PathBuf, String) {
+    let (file, master, slave, _) = opts.mesh.names();
+    let (dir, mut text) = read_case("concentric-spheres", file);
+    let steps = (opts.until * 10.0).round().max(1.0);
+    text = text
+        .replace("end = 9.0", &format!("end = {}", opts.until))
+        .replace("steps = 90", &format!("steps = {steps}"))
+        .replace("friction = 0.0", &format!("friction = {:?}", opts.friction));
+    if opts.swapped {
+        text = swap_master_slave(&text, master, slave);
+    }
+    (dir, text)
+}
+
+/// Extracts `../shared/benchmarks/concentric-spheres/mesh/verycoarse.tar.xz`
+/// (the polyMesh in mm) into a fresh temporary folder and returns it.
+pub fn extract_mesh(shared: &Path) -> Result<PathBuf, String> {
+    let archive = shared.join("benchmarks/concentric-spheres/mesh/verycoarse.tar.xz");
+    if !archive.is_file() {
+        return Err(format!("{} is missing", archive.display()));
+    }
+    static RUNS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let dir = std::env::temp_dir().join(format!(
+        "fvc-spheres-{}-{}",
+        std::process::id(),
+        RUNS.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
+    ));
+    std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let status = std::process::Command::new("tar")
+        .arg("-xJf")
+        .arg(&archive)
+        .arg("-C")
+        .arg(&dir)
+        .status()
+        .map_err(|e| format!("tar: {e}"))?;
+    if !status.success() || !dir.join("polyMesh/points").is_file() {
+        return Err(format!("tar -xJf {} failed: {status}", archive.display()));
+    }
+    Ok(dir)
+}
+
+/// Runs the case with `opts`; [`Mesh::Benchmark`] needs `shared`
+/// (`../shared`, an error without it).
+pub fn run(opts: &Options, shared: Option<&Path>) -> Result<Spheres, String> {
+    let (case_dir, text) = case_text(opts);
+    let extracted = match opts.mesh {
+        Mesh::Benchmark => {
+            let shared = shared.ok_or("the benchmark mesh needs ../shared")?;
+            Some(extract_mesh(shared)?)
+        }
+        _ => None,
+    };
+    let (out, history) =
+        run_toml_in_with_history(&text, Some(extracted.as_deref().unwrap_or(&case_dir)));
+    if let Some(dir) = &extracted {
+        // the extracted mesh is only needed while the run reads it
+        let _ = std::fs::remove_dir_all(dir);
+    }
+    Ok(Spheres {
+        displacement: history.column("time"),
+        force: history.column(opts.mesh.names().3),
+        outer_iterations: history
+            .column("outer_iterations")
+            .iter()
+            .map(|&n| n as usize)
+            .collect(),
+        converged: out.converged,
+        failure: out.failure.clone(),
+        cost: RunCost::of(&out),
+    })
+}
+
+/// A published force–displacement curve, mapped to u_z in mm and the
+/// compressive force in N on the quarter model.
+#[derive(Debug, Clone)]
+pub struct ReferenceCurve {
+    /// Source (Abaqus, FEBio, Areias, Puso–Laursen).
+    pub source: &'static str,
+    /// (u_z, F) points, u_z increasing.
+    pub points: Vec<(f64, f64)>,
+}
+
+impl ReferenceCurve {
+    /// Force at `u` (linear between points; NaN outside).
+    pub fn force_at(&self, u: f64) -> f64 {
+        let (x, y): (Vec<f64>, Vec<f64>) = self.points.iter().copied().unzip();
+        interpolate(&x, &y, u)
+    }
+}
+
+/// How the stored columns map to (u_z in mm, F in N): `(file, x scale,
+/// y scale)`. The stored curves come in three forms (checked against each
+/// other at the plateau before buckling, u ≈ 5 mm, where all give
+/// 2.2–2.6 N):
+/// * Abaqus (both cases) and FEBio (friction): x = u_z in mm (0 … 10),
+///   y = F in N, positive;
+/// * FEBio, Areias and Puso–Laursen (frictionless): x = pseudo-time 0 … 1
+///   of a 10 mm travel, y = −F: u_z = 10 x, F = −y;
+/// * Areias (friction): x as above, y = −F/100: F = −100 y.
+const REFERENCES: [(bool, &str, &str, f64, f64); 7] = [
+    (false, "Abaqus", "frictionless/Abaqus.csv", 1.0, 1.0),
+    (false, "FEBio", "frictionless/FEBio.csv", 10.0, -1.0),
+    (false, "Areias", "frictionless/Areias.csv", 10.0, -1.0),
+    (
+        false,
+        "Puso–Laursen",
+        "frictionless/PusoLaursen.csv",
+        10.0,
+        -1.0,
+    ),
+    (true, "Abaqus", "friction/Abaqus.csv", 1.0, 1.0),
+    (true, "FEBio", "friction/FEBio.csv", 1.0, 1.0),
+    (true, "Areias", "friction/Areias.csv", 10.0, -100.0),
+];
+
+/// The published curves of the frictionless (`frictional = false`) or the
+/// μ = 0.5 case from `shared` (`../shared`), mapped as in the table above.
+pub fn reference_curves(shared: &Path, frictional: bool) -> Result<Vec<ReferenceCurve>, String> {
+    let dir = shared.join("benchmarks/concentric-spheres/reference");
+    let mut curves = Vec::new();
+    for &(_, source, file, sx, sy) in REFERENCES.iter().filter(|r| r.0 == frictional) {
+        let path = dir.join(file);
+        let text =
+            std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let mut points = Vec::new();
+        for line in text.lines().filter(|l| !l.trim().is_empty()) {
+            let v: Vec<f64> = line
+                .split(|c: char| c == ',' || c.is_whitespace())
+                .filter(|s| !s.is_empty())
+                .map(|s| {
+                    s.parse::<f64>()
+                        .map_err(|e| format!("{}: '{s}': {e}", path.display()))
+                })
+                .collect::<Result<_, _>>()?;
+            if v.len() >= 2 {
+                points.push((sx * v[0], sy * v[1]));
+            }
+        }
+        points.sort_by(|a, b| a.0.total_cmp(&b.0));
+        curves.push(ReferenceCurve { source, points });
+    }
+    Ok(curves)
+}
+
+/// Mean of the Abaqus and FEBio forces at `u` (the benchmark's acceptance
+/// references; they differ by up to 7 % before buckling).
+pub fn abaqus_febio_mean(curves: &[ReferenceCurve], u: f64) -> f64 {
+    let f: Vec<f64> = curves
+        .iter()
+        .filter(|c| c.source == "Abaqus" || c.source == "FEBio")
+        .map(|c| c.force_at(u))
+        .collect();
+    f.iter().sum::<f64>() / f.len().max(1) as f64
+}

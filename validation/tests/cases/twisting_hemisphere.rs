@@ -1,0 +1,192 @@
+//! twisting-hemisphere (thesis §5.3.5, figs. 5.28–5.32; issue 7;
+//! `../shared/benchmarks/README.md`): a hollow neo-Hookean hemisphere
+//! pushed 1 mm onto a block (10 increments, frictionless), then twisted
+//! 180° (90 increments, μ = 0.5). N, mm, MPa. The coarse benchmark mesh is
+//! extracted from `../shared` at run time: every test prints `skipped`
+//! without it.
+//!
+//! The default test runs the first half of the indentation as shipped; the
+//! full case and the swapped master are `--ignored`.
+use validation::benchmarks::twisting_hemisphere::{
+    angle_of, references, run, Options, Twist, FORCE_TOLERANCE, TORQUE_TOLERANCE,
+};
+use validation::shared_dir;
+
+/// F_z at t = 0.5 (0.5 mm of the 1 mm indentation) measured as shipped
+/// (implicit coupling, block master), N.
+const FZ_HALF_INDENTATION: f64 = 2.036;
+
+fn report(label: &str, r: &Twist) {
+    eprintln!(
+        "twisting hemisphere, {label}: reached t = {:.4} (θ = {:.1}°), {} increments, {:.0} outer iterations per increment (indentation {:.0}, twist {:.0}), {:.1} s, {:.3} µs/cell/iteration{}",
+        r.reached(),
+        angle_of(r.reached()),
+        r.time.len(),
+        r.cost.outer_iterations as f64 / r.cost.increments.max(1) as f64,
+        r.mean_outer(0.0, 1.0),
+        r.mean_outer(1.0, 10.0),
+        r.cost.wall_seconds,
+        r.cost.us_per_cell_iteration(),
+        r.failure
+            .as_ref()
+            .map(|f| format!("; failure: {f}"))
+            .unwrap_or_default()
+    );
+    for (t, (f, m)) in r.time.iter().zip(r.force.iter().zip(&r.torque)) {
+        eprintln!(
+            "  t = {t:.4}  θ = {:6.1}°  F_z = {f:.5} N  M = {m:.5} N·mm",
+            angle_of(*t)
+        );
+    }
+}
+
+/// The first half of the indentation as shipped (5 increments of 0.1 mm,
+/// each redone in quarters by the cut-backs; ~25 s): F_z(t = 0.5) =
+/// 2.036 N, and no twisting moment while the contact is frictionless and
+/// the motion a pure translation (this also checks that the `friction`
+/// table keeps μ = 0 before t = 1, and the moment column).
+#[test]
+fn half_indentation_force_and_no_moment() {
+    let Some(shared) = shared_dir() else {
+        eprintln!("skipped: ../shared is absent");
+        return;
+    };
+    let r = match run(
+        &shared,
+        &Options {
+            until: 0.5,
+            ..Default::default()
+        },
+    ) {
+        Ok(r) => r,
+        Err(e) => panic!("{e}"),
+    };
+    report("indentation to t = 0.5", &r);
+    assert!(r.converged, "{:?}", r.failure);
+    let (f, m) = r.at_time(0.5);
+    assert!(
+        (f / FZ_HALF_INDENTATION - 1.0).abs() < 0.01,
+        "F_z(0.5) = {f} N, measured {FZ_HALF_INDENTATION}"
+    );
+    // the force grows faster than linearly (the contact spreads)
+    let (f25, _) = r.at_time(0.25);
+    assert!(f > 2.2 * f25, "F_z(0.25) = {f25}, F_z(0.5) = {f}");
+    // frictionless and axisymmetric: the moment is round-off (F_z · 1 mm
+    // is the scale of a twisting moment)
+    assert!(m.abs() < 1e-3 * f, "M = {m} N·mm with F_z = {f} N");
+    // below the Sauer–De Lorenzis force at the end of the indentation
+    if let Ok(refs) = references(&shared) {
+        let f_end = refs.force.at(0.0);
+        assert!(
+            f < f_end,
+            "F_z(0.5) = {f} above the full-indentation {f_end}"
+        );
+    }
+}
+
+/// Runs `opts` and checks the benchmark's acceptance: the run completes
+/// 180°, the plateau torque (mean over 120–180°) within 5 % and F_z
+/// (at 0°, 90°, 180°) within 3 % of Sauer–De Lorenzis.
+fn full_case(label: &str, opts: &Options) {
+    let Some(shared) = shared_dir() else {
+        eprintln!("skipped: ../shared is absent");
+        return;
+    };
+    let r = match run(&shared, opts) {
+        Ok(r) => r,
+        Err(e) => panic!("{e}"),
+    };
+    report(label, &r);
+    let refs = match references(&shared) {
+        Ok(x) => x,
+        Err(e) => panic!("{e}"),
+    };
+    for deg in [0.0, 20.0, 40.0, 60.0, 90.0, 120.0, 150.0, 180.0] {
+        let (f, m) = r.at_angle(deg);
+        eprintln!(
+            "  θ = {deg:5.1}°: F_z {f:.4} (S–DL {:.4}), M {m:.4} (S–DL {:.4}, FEBio {:.4})",
+            refs.force.at(deg),
+            refs.torque.at(deg),
+            refs.torque_febio.at(deg)
+        );
+    }
+    assert!(
+        r.converged && r.reached() > 10.0 - 1e-6,
+        "the twist stopped at θ = {:.1}°: {:?}",
+        angle_of(r.reached()),
+        r.failure
+    );
+    let n = 30;
+    let plateau = (0..=n)
+        .map(|i| r.at_angle(120.0 + 2.0 * i as f64).1)
+        .sum::<f64>()
+        / (n + 1) as f64;
+    let plateau_ref = refs.torque.mean(120.0, 180.0);
+    eprintln!(
+        "  plateau torque (120–180°): {plateau:.4} N·mm, Sauer–De Lorenzis {plateau_ref:.4} ({:+.2} %), FEBio {:.4}",
+        100.0 * (plateau / plateau_ref - 1.0),
+        refs.torque_febio.mean(120.0, 180.0)
+    );
+    assert!(
+        (plateau / plateau_ref - 1.0).abs() < TORQUE_TOLERANCE,
+        "plateau torque {plateau} against {plateau_ref}"
+    );
+    for deg in [0.0, 90.0, 180.0] {
+        let (f, _) = r.at_angle(deg);
+        let fr = refs.force.at(deg);
+        assert!(
+            (f / fr - 1.0).abs() < FORCE_TOLERANCE,
+            "F_z at {deg}°: {f} against {fr}"
+        );
+    }
+}
+
+/// The full case as shipped (block master). Measured: FAILS — the run
+/// stops in the indentation at t ≈ 0.58 (0.58 mm of 1 mm, F_z ≈ 2.4 N):
+/// the Picard iterations diverge in the hemisphere wall, where the coarse
+/// mesh folds (cells at the inner surface at mid-latitude are compressed
+/// to J ≈ 0.36), at every step size down to 1/1280 mm, with implicit and
+/// explicit coupling, with and without Anderson acceleration.
+#[test]
+#[ignore]
+fn full_twist_block_master() {
+    full_case("as shipped", &Options::default());
+}
+
+/// Master and slave swapped (hemisphere master); the same acceptance.
+/// Measured: FAILS as [`full_twist_block_master`] (the failure is in the
+/// hemisphere's wall, not in the contact).
+#[test]
+#[ignore]
+fn full_twist_hemisphere_master() {
+    full_case(
+        "hemisphere master",
+        &Options {
+            swapped: true,
+            ..Default::default()
+        },
+    );
+}
+
+/// The reference files parse, in N and N·mm after the ×10 of the
+/// Sauer–De Lorenzis values: F_z ≈ 12.3 N at 0°, the plateau torque
+/// ≈ 4.0 N·mm, FEBio's torque within 2 % of Sauer–De Lorenzis on the
+/// plateau (the check of the scale).
+#[test]
+fn reference_curves_parse() {
+    let Some(shared) = shared_dir() else {
+        eprintln!("skipped: ../shared is absent");
+        return;
+    };
+    let refs = match references(&shared) {
+        Ok(r) => r,
+        Err(e) => panic!("{e}"),
+    };
+    let f0 = refs.force.at(0.0);
+    let m = refs.torque.mean(120.0, 180.0);
+    let mf = refs.torque_febio.mean(120.0, 180.0);
+    eprintln!("F_z(0°) = {f0:.3} N, plateau torque {m:.3} N·mm (FEBio {mf:.3})");
+    assert!((f0 - 12.30).abs() < 0.05, "{f0}");
+    assert!((m - 4.04).abs() < 0.05, "{m}");
+    assert!((mf / m - 1.0).abs() < 0.02, "{mf} against {m}");
+}

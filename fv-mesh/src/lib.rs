@@ -20,6 +20,7 @@ mod surface;
 mod wedge_point_constraint;
 
 pub mod generators;
+pub mod spherical_shell;
 
 pub use cell_shapes::{CellShape, CellType};
 pub use cell_to_point::{CellToPoint, PointFit, EIGEN_TOLERANCE, MAX_WEIGHT_SUM};

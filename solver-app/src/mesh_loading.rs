@@ -84,6 +84,25 @@ pub fn load_mesh(
             m.points.iter_mut().for_each(|p| *p += shift);
             m
         }
+        MeshSpec::SphericalShell {
+            r_inner,
+            r_outer,
+            part,
+            cells,
+            radial_grading,
+            translate,
+        } => {
+            let mut m = fv_mesh::spherical_shell::spherical_shell_mesh(
+                *r_inner,
+                *r_outer,
+                *part,
+                *cells,
+                *radial_grading,
+            )
+            .map_err(|e| source.error(&key, e.to_string()))?;
+            m.transform_points(1.0, Vector::from(*translate));
+            m
+        }
     };
     mesh.cell_zones.clear();
     Ok(mesh)

@@ -63,10 +63,31 @@ pub enum MeshSpec {
         /// Shift of the generated mesh (the centre of the sector).
         translate: [f64; 3],
     },
+    /// `{ generator = "spherical-shell", r_inner, r_outer, part = "octant",
+    /// cells = [radial, quarter], radial_grading = 1, translate = [0, 0, 0] }`:
+    /// a thick spherical shell about the origin (cubed-sphere hexahedra),
+    /// then moved by `translate` (its centre). `part`: `"sphere"` (patches
+    /// `inner outer`), `"hemisphere"` (z ≤ 0; `inner outer zmax`) or
+    /// `"octant"` (x, y ≥ 0, z ≤ 0; `inner outer xmin ymin zmax`).
+    /// `quarter` (even) cells along a quarter great circle.
+    SphericalShell {
+        /// Inner radius (> 0).
+        r_inner: f64,
+        /// Outer radius (> r_inner).
+        r_outer: f64,
+        /// Which part of the shell.
+        part: fv_mesh::spherical_shell::ShellPart,
+        /// `[radial, quarter]` cells (radial >= 1, quarter even >= 2).
+        cells: [usize; 2],
+        /// Last/first radial cell size ratio (> 0).
+        radial_grading: f64,
+        /// Shift of the generated mesh (the centre of the sphere).
+        translate: [f64; 3],
+    },
 }
 
 /// The built-in generators.
-pub const GENERATORS: [&str; 2] = ["box", "annulus"];
+pub const GENERATORS: [&str; 3] = ["box", "annulus", "spherical-shell"];
 
 /// Largest cell count a generator accepts (as in `fv_mesh::generators`).
 const MAX_GENERATED_CELLS: u128 = 50_000_000;
@@ -119,12 +140,19 @@ pub(crate) fn mesh(node: &Node<'_>, case_dir: &Path) -> Res<MeshSpec> {
         }
         ["generator"] => {
             let g = t.need("generator", |n| {
-                n.choice("mesh generator", &[("box", "box"), ("annulus", "annulus")])
+                n.choice(
+                    "mesh generator",
+                    &[
+                        ("box", "box"),
+                        ("annulus", "annulus"),
+                        ("spherical-shell", "spherical-shell"),
+                    ],
+                )
             })?;
-            if g == "box" {
-                generate_box(&t)
-            } else {
-                generate_annulus(&t)
+            match g {
+                "box" => generate_box(&t),
+                "annulus" => generate_annulus(&t),
+                _ => generate_spherical_shell(&t),
             }
         }
         [] => Err(node.err(format!(
@@ -210,6 +238,71 @@ fn generate_annulus(t: &Table<'_>) -> Res<MeshSpec> {
         z0,
         z1,
         cells: cells(t)?,
+        radial_grading: t.opt("radial_grading", 1.0, |n| n.positive())?,
+        translate: t.opt("translate", [0.0; 3], |n| n.vec3())?,
+    })
+}
+
+fn generate_spherical_shell(t: &Table<'_>) -> Res<MeshSpec> {
+    use fv_mesh::spherical_shell::ShellPart;
+    t.deny_unknown(&[
+        "generator",
+        "r_inner",
+        "r_outer",
+        "part",
+        "cells",
+        "radial_grading",
+        "translate",
+    ])?;
+    let r_inner = t.need("r_inner", |n| n.positive())?;
+    let r_outer = t.need("r_outer", |n| {
+        n.f64_if(
+            |x| x > r_inner,
+            &format!("exceed r_inner = {}", fmt_num(r_inner)),
+        )
+    })?;
+    let part = t.need("part", |n| {
+        n.choice(
+            "shell part",
+            &[
+                ("sphere", ShellPart::Sphere),
+                ("hemisphere", ShellPart::Hemisphere),
+                ("octant", ShellPart::Octant),
+            ],
+        )
+    })?;
+    let c = t.req("cells")?;
+    let n = c.node();
+    let items = n.array()?;
+    if items.len() != 2 {
+        return Err(n.err(format!(
+            "expected cells = [radial, quarter] (2 integers), got {} element(s)",
+            items.len()
+        )));
+    }
+    let radial = items[0].node().usize_min(1)?;
+    let quarter = items[1].node().usize_min(2)?;
+    if quarter % 2 != 0 {
+        return Err(n.err(format!(
+            "the cells along a quarter circle must be even, got {quarter}"
+        )));
+    }
+    let per_layer: u128 = match part {
+        ShellPart::Octant => 3,
+        ShellPart::Hemisphere => 12,
+        ShellPart::Sphere => 24,
+    } * (quarter as u128 / 2).pow(2);
+    if per_layer * radial as u128 > MAX_GENERATED_CELLS {
+        return Err(n.err(format!(
+            "[{radial}, {quarter}] makes {} cells, more than the generator limit of {MAX_GENERATED_CELLS}",
+            per_layer * radial as u128
+        )));
+    }
+    Ok(MeshSpec::SphericalShell {
+        r_inner,
+        r_outer,
+        part,
+        cells: [radial, quarter],
         radial_grading: t.opt("radial_grading", 1.0, |n| n.positive())?,
         translate: t.opt("translate", [0.0; 3], |n| n.vec3())?,
     })

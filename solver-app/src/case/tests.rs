@@ -359,6 +359,43 @@ fn mesh_errors() {
         r#"mesh = { generator = "box", min = [0, 0, 0], max = [1, 1, 1], cells = [1000, 1000, 1000] }"#,
     );
     assert!(e.message.contains("limit"), "{e}");
+    let shell = |rest: &str| {
+        m(&format!(
+            r#"mesh = {{ generator = "spherical-shell", r_inner = 10, r_outer = 12{rest} }}"#
+        ))
+    };
+    let e = shell(r#", part = "quarter", cells = [2, 4]"#);
+    assert_eq!(e.key.as_deref(), Some("body[0].mesh.part"));
+    assert!(e.message.contains("\"octant\""), "{e}");
+    let e = shell(r#", part = "octant", cells = [2, 5]"#);
+    assert_eq!(e.key.as_deref(), Some("body[0].mesh.cells"));
+    assert!(e.message.contains("even"), "{e}");
+    let e = shell(r#", part = "octant", cells = [2, 4, 1]"#);
+    assert!(e.message.contains("3 element"), "{e}");
+    let e = shell(r#", part = "sphere", cells = [100, 2000]"#);
+    assert!(e.message.contains("limit"), "{e}");
+    let e = shell(r#", cells = [2, 4]"#);
+    assert_eq!(e.key.as_deref(), Some("body[0].mesh.part"));
+}
+
+#[test]
+fn spherical_shell_form() {
+    let text = MIN.replace(
+        r#"mesh = { generator = "box", min = [0, 0, 0], max = [1, 1, 0.1], cells = [10, 10, 1] }"#,
+        r#"mesh = { generator = "spherical-shell", r_inner = 10, r_outer = 12, part = "hemisphere", cells = [4, 12], translate = [0, 0, 5] }"#,
+    );
+    let case = parse_case(&text, Path::new("c.toml")).expect("parses");
+    assert_eq!(
+        case.bodies[0].mesh,
+        MeshSpec::SphericalShell {
+            r_inner: 10.0,
+            r_outer: 12.0,
+            part: fv_mesh::spherical_shell::ShellPart::Hemisphere,
+            cells: [4, 12],
+            radial_grading: 1.0,
+            translate: [0.0, 0.0, 5.0],
+        }
+    );
 }
 
 #[test]

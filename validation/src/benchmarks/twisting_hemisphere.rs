@@ -2,14 +2,14 @@
 //! Lorenzis 2015): a hollow neo-Hookean hemisphere pushed 1 mm onto a
 //! block without friction (pseudo-time t 0 → 1, 10 increments), then
 //! twisted 180° about the vertical axis with μ = 0.5 (t 1 → 10, 90
-//! increments). Measured: the vertical reaction F_z (here −F_y: the
-//! vertical axis of the mesh is y) and the twisting torque M_z (here the
-//! `My` moment of the hemisphere's rigid-motion patch), against the
-//! angle θ = (t − 1)·20°.
+//! increments). Measured: the vertical reaction F_z on the hemisphere's
+//! rim and the twisting torque M_z (the moment column of its rigid-motion
+//! patch), against the angle θ = (t − 1)·20°.
 //!
-//! The mesh is the benchmark's coarse polyMesh from `../shared`: it is
-//! extracted into a temporary folder at run time (`tar -xJf`), so the
-//! runner needs `../shared` and `tar` with xz support.
+//! Two meshes: the shipped case (`case.toml`, built-in generators, z up)
+//! and the benchmark's coarse polyMesh (`case-polymesh.toml`, y up), which
+//! is extracted from `../shared` into a temporary folder at run time
+//! (`tar -xJf`).
 //!
 //! References (`../shared/benchmarks/twisting-hemisphere/reference/`):
 //! the x column of all three files is already the twist angle in degrees
@@ -21,13 +21,39 @@
 //! in N·mm as stored.
 use std::path::{Path, PathBuf};
 
-use super::{read_case, swap_master_slave, RunCost};
+use super::{cases_dir, read_case, swap_master_slave, RunCost};
 use crate::run_toml_in_with_history;
 
-/// The contact surfaces as shipped: block top master.
-pub const MASTER: &str = "block/block-contact";
-/// The hemisphere's outer surface, slave as shipped.
-pub const SLAVE: &str = "hemisphere/sphere-contact";
+/// Which mesh the case runs on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MeshSource {
+    /// `case.toml`: the built-in box and spherical-shell generators (z up).
+    Generated,
+    /// `case-polymesh.toml`: the benchmark's coarse polyMesh from `../shared` (y up).
+    Benchmark,
+}
+
+impl MeshSource {
+    /// (case file, master, slave, vertical force column, moment column).
+    fn names(self) -> [&'static str; 5] {
+        match self {
+            MeshSource::Generated => [
+                "case.toml",
+                "block/zmax",
+                "hemisphere/outer",
+                "hemisphere/zmax:Fz",
+                "hemisphere/zmax:Mz",
+            ],
+            MeshSource::Benchmark => [
+                "case-polymesh.toml",
+                "block/block-contact",
+                "hemisphere/sphere-contact",
+                "hemisphere/sphere-displacement:Fy",
+                "hemisphere/sphere-displacement:My",
+            ],
+        }
+    }
+}
 /// Scale of the stored Sauer–De Lorenzis values to N and N·mm.
 pub const DE_LORENZIS_SCALE: f64 = 10.0;
 /// Acceptance: plateau torque within 5 % of Sauer–De Lorenzis.
@@ -45,6 +71,8 @@ pub struct Options {
     /// `Some(true)`: implicit, `Some(false)`: explicit coupling (default
     /// relaxation); `None`: as in the case file.
     pub implicit: Option<bool>,
+    /// The mesh.
+    pub mesh: MeshSource,
 }
 
 impl Default for Options {
@@ -54,6 +82,7 @@ impl Default for Options {
             until: 10.0,
             swapped: false,
             implicit: None,
+            mesh: MeshSource::Generated,
         }
     }
 }
@@ -163,7 +192,8 @@ pub fn extract_mesh(shared: &Path) -> Result<PathBuf, String> {
 /// The case text for `opts`: the time intervals, coupling and master
 /// choice edited (its mesh path `polyMesh` is relative to the case folder).
 pub fn case_text(opts: &Options) -> String {
-    let (_, mut text) = read_case("twisting-hemisphere", "case.toml");
+    let [file, master, slave, ..] = opts.mesh.names();
+    let (_, mut text) = read_case("twisting-hemisphere", file);
     let intervals = if opts.until <= 1.0 {
         let n = (10.0 * opts.until).round().max(1.0);
         format!("intervals = [[{}, {n}]]", opts.until)
@@ -178,25 +208,33 @@ pub fn case_text(opts: &Options) -> String {
         None => {}
     }
     if opts.swapped {
-        text = swap_master_slave(&text, MASTER, SLAVE);
+        text = swap_master_slave(&text, master, slave);
     }
     text
 }
 
-/// Runs the case with `opts` on the mesh extracted from `shared`.
-pub fn run(shared: &Path, opts: &Options) -> Result<Twist, String> {
-    let dir = extract_mesh(shared)?;
-    let (out, history) = run_toml_in_with_history(&case_text(opts), Some(&dir));
-    let _ = std::fs::remove_dir_all(&dir);
+/// Runs the case with `opts`; `shared` (`../shared`) is needed for
+/// [`MeshSource::Benchmark`] only.
+pub fn run(shared: Option<&Path>, opts: &Options) -> Result<Twist, String> {
+    let [_, _, _, force_column, moment_column] = opts.mesh.names();
+    let (out, history) = match opts.mesh {
+        MeshSource::Generated => run_toml_in_with_history(
+            &case_text(opts),
+            Some(&cases_dir().join("twisting-hemisphere")),
+        ),
+        MeshSource::Benchmark => {
+            let shared = shared.ok_or("the benchmark mesh needs ../shared")?;
+            let dir = extract_mesh(shared)?;
+            let r = run_toml_in_with_history(&case_text(opts), Some(&dir));
+            let _ = std::fs::remove_dir_all(&dir);
+            r
+        }
+    };
     Ok(Twist {
         time: history.column("time"),
-        force: history
-            .column("hemisphere/sphere-displacement:Fy")
-            .iter()
-            .map(|f| -f)
-            .collect(),
+        force: history.column(force_column).iter().map(|f| -f).collect(),
         torque: history
-            .column("hemisphere/sphere-displacement:My")
+            .column(moment_column)
             .iter()
             .map(|m| m.abs())
             .collect(),

@@ -1,20 +1,22 @@
 //! twisting-hemisphere (thesis §5.3.5, figs. 5.28–5.32; issue 7;
 //! `../shared/benchmarks/README.md`): a hollow neo-Hookean hemisphere
 //! pushed 1 mm onto a block (10 increments, frictionless), then twisted
-//! 180° (90 increments, μ = 0.5). N, mm, MPa. The coarse benchmark mesh is
-//! extracted from `../shared` at run time: every test prints `skipped`
-//! without it.
+//! 180° (90 increments, μ = 0.5). N, mm, MPa. The shipped case uses the
+//! built-in generators; the benchmark's coarse polyMesh is extracted from
+//! `../shared` at run time (those tests print `skipped` without it).
 //!
-//! The default test runs the first half of the indentation as shipped; the
-//! full case and the swapped master are `--ignored`.
+//! The default test runs the first 0.3 mm of the indentation as shipped;
+//! the full cases (generated mesh, swapped master, benchmark mesh) are
+//! `--ignored`.
 use validation::benchmarks::twisting_hemisphere::{
-    angle_of, references, run, Options, Twist, FORCE_TOLERANCE, TORQUE_TOLERANCE,
+    angle_of, references, run, MeshSource, Options, Twist, FORCE_TOLERANCE, TORQUE_TOLERANCE,
 };
 use validation::shared_dir;
 
-/// F_z at t = 0.5 (0.5 mm of the 1 mm indentation) measured as shipped
-/// (implicit coupling, block master), N.
-const FZ_HALF_INDENTATION: f64 = 2.036;
+/// F_z at t = 0.3 (0.3 mm of the 1 mm indentation) measured as shipped
+/// (implicit coupling, block master, generated mesh), N. The benchmark's
+/// polyMesh gives 0.9332 (+0.8 %).
+const FZ_INDENTATION_03: f64 = 0.9260;
 
 fn report(label: &str, r: &Twist) {
     eprintln!(
@@ -40,47 +42,45 @@ fn report(label: &str, r: &Twist) {
     }
 }
 
-/// The first half of the indentation as shipped (5 increments of 0.1 mm,
-/// each redone in quarters by the cut-backs; ~25 s): F_z(t = 0.5) =
-/// 2.036 N, and no twisting moment while the contact is frictionless and
+/// The first 0.3 mm of the indentation as shipped (3 increments of
+/// 0.1 mm, each redone in eighths by the cut-backs; ~30 s): F_z(t = 0.3) =
+/// 0.926 N, and no twisting moment while the contact is frictionless and
 /// the motion a pure translation (this also checks that the `friction`
 /// table keeps μ = 0 before t = 1, and the moment column).
 #[test]
-fn half_indentation_force_and_no_moment() {
-    let Some(shared) = shared_dir() else {
-        eprintln!("skipped: ../shared is absent");
-        return;
-    };
+fn indentation_force_and_no_moment() {
     let r = match run(
-        &shared,
+        shared_dir().as_deref(),
         &Options {
-            until: 0.5,
+            until: 0.3,
             ..Default::default()
         },
     ) {
         Ok(r) => r,
         Err(e) => panic!("{e}"),
     };
-    report("indentation to t = 0.5", &r);
+    report("indentation to t = 0.3", &r);
     assert!(r.converged, "{:?}", r.failure);
-    let (f, m) = r.at_time(0.5);
+    let (f, m) = r.at_time(0.3);
     assert!(
-        (f / FZ_HALF_INDENTATION - 1.0).abs() < 0.01,
-        "F_z(0.5) = {f} N, measured {FZ_HALF_INDENTATION}"
+        (f / FZ_INDENTATION_03 - 1.0).abs() < 0.01,
+        "F_z(0.3) = {f} N, measured {FZ_INDENTATION_03}"
     );
     // the force grows faster than linearly (the contact spreads)
-    let (f25, _) = r.at_time(0.25);
-    assert!(f > 2.2 * f25, "F_z(0.25) = {f25}, F_z(0.5) = {f}");
+    let (f1, _) = r.at_time(0.1);
+    assert!(f > 4.0 * f1, "F_z(0.1) = {f1}, F_z(0.3) = {f}");
     // frictionless and axisymmetric: the moment is round-off (F_z · 1 mm
     // is the scale of a twisting moment)
     assert!(m.abs() < 1e-3 * f, "M = {m} N·mm with F_z = {f} N");
-    // below the Sauer–De Lorenzis force at the end of the indentation
-    if let Ok(refs) = references(&shared) {
-        let f_end = refs.force.at(0.0);
-        assert!(
-            f < f_end,
-            "F_z(0.5) = {f} above the full-indentation {f_end}"
-        );
+    // far below the Sauer–De Lorenzis force at the end of the indentation
+    if let Some(shared) = shared_dir() {
+        if let Ok(refs) = references(&shared) {
+            let f_end = refs.force.at(0.0);
+            assert!(
+                f < f_end,
+                "F_z(0.3) = {f} above the full-indentation {f_end}"
+            );
+        }
     }
 }
 
@@ -92,7 +92,7 @@ fn full_case(label: &str, opts: &Options) {
         eprintln!("skipped: ../shared is absent");
         return;
     };
-    let r = match run(&shared, opts) {
+    let r = match run(Some(&shared), opts) {
         Ok(r) => r,
         Err(e) => panic!("{e}"),
     };
@@ -141,12 +141,16 @@ fn full_case(label: &str, opts: &Options) {
     }
 }
 
-/// The full case as shipped (block master). Measured: FAILS — the run
-/// stops in the indentation at t ≈ 0.58 (0.58 mm of 1 mm, F_z ≈ 2.4 N):
-/// the Picard iterations diverge in the hemisphere wall, where the coarse
-/// mesh folds (cells at the inner surface at mid-latitude are compressed
-/// to J ≈ 0.36), at every step size down to 1/1280 mm, with implicit and
-/// explicit coupling, with and without Anderson acceleration.
+/// The full case as shipped (generated mesh, block master). Measured:
+/// FAILS — the run stops in the indentation at t ≈ 0.54 (F_z(0.5) =
+/// 1.96 N; increments 1–5 took 685, 719, 846, 1,195 and 1,730 outer
+/// iterations, 5.0 µs/cell/iteration counting the failed attempts'
+/// time, 64 s to the failure): every 0.1 mm increment needs eighths (the first Picard
+/// iterate concentrates the rim's displacement in the cells next to it
+/// and inverts them), and beyond t ≈ 0.55 the iterations diverge in the
+/// hemisphere wall, where the coarse shell folds, at every step size,
+/// with implicit and explicit coupling, with or without Anderson
+/// acceleration.
 #[test]
 #[ignore]
 fn full_twist_block_master() {
@@ -163,6 +167,22 @@ fn full_twist_hemisphere_master() {
         "hemisphere master",
         &Options {
             swapped: true,
+            ..Default::default()
+        },
+    );
+}
+
+/// The full case on the benchmark's coarse polyMesh. Measured: FAILS —
+/// stops at t = 0.575 (F_z = 2.61 N; cells on the inner surface at
+/// mid-latitude compressed to J ≈ 0.36); with `rhie_chow = 1` it gets to
+/// t = 0.625 (F_z = 3.15 N, then the force drops and the iterations stall).
+#[test]
+#[ignore]
+fn full_twist_benchmark_mesh() {
+    full_case(
+        "benchmark polyMesh",
+        &Options {
+            mesh: MeshSource::Benchmark,
             ..Default::default()
         },
     );

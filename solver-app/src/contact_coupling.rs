@@ -7,6 +7,7 @@
 //! contact patches.
 use crate::case::{
     Case, ContactAlgorithm as AlgorithmName, Coupling as CouplingName, Detection, InputError,
+    ScalarValue,
 };
 use crate::model::Body;
 use crate::profile::Phase;
@@ -256,6 +257,8 @@ pub struct ContactInterface {
     algorithm: Box<dyn ContactAlgorithm>,
     law: ContactLaw,
     params: PenaltyParams,
+    /// μ against time (`friction` of the case: a constant or a table).
+    friction: ScalarValue,
     /// (K, G, Ω/Γ) per face of the master and the slave; `None` = rigid.
     materials: [Option<FaceMaterial>; 2],
     /// Whether the penalty was evaluated on the contacting faces of this increment.
@@ -445,7 +448,7 @@ impl ContactSet {
             let params = PenaltyParams {
                 penalty_scale: c.penalty_scale,
                 tangential_penalty_scale: c.tangential_penalty_scale,
-                friction: c.friction,
+                friction: c.friction.at(0.0),
                 ..Default::default()
             };
             let law = penalty_law(&params, &master.surface, &slave.surface, &materials, None)
@@ -479,6 +482,7 @@ impl ContactSet {
                 algorithm,
                 law,
                 params,
+                friction: c.friction.clone(),
                 materials,
                 penalty_localised: false,
                 coupling_saved: coupling.clone(),
@@ -490,6 +494,17 @@ impl ContactSet {
             });
         }
         Ok(set)
+    }
+
+    /// The friction coefficients at time `t` (the end of the increment
+    /// about to be solved): μ of a `friction` time table applies from the
+    /// first increment whose end time it covers.
+    pub fn set_time(&mut self, t: f64) {
+        for ci in &mut self.interfaces {
+            let mu = ci.friction.at(t);
+            ci.params.friction = mu;
+            ci.law.friction = mu;
+        }
     }
 
     /// Whether there is any contact.

@@ -85,7 +85,67 @@ pub fn history_columns(bodies: &[Body], contacts: &ContactSet) -> Vec<String> {
     for c in &contacts.interfaces {
         cols.push(format!("{}:contact_area", c.slave_name));
     }
+    for (_, _, name) in moment_patches(bodies) {
+        for c in ["Mx", "My", "Mz"] {
+            cols.push(format!("{name}:{c}"));
+        }
+    }
     cols
+}
+
+/// Patches of deformable bodies with a `rigid-motion` condition that has a
+/// rotation: (body index, patch index, "<body>/<patch>"). Their moments
+/// close the history rows.
+pub fn moment_patches(bodies: &[Body]) -> Vec<(usize, usize, String)> {
+    reported_patches(bodies)
+        .into_iter()
+        .filter(|&(bi, p, _)| {
+            !bodies[bi].rigid
+                && matches!(
+                    bodies[bi].patch_specs[p],
+                    Some(crate::case::BoundarySpec::RigidMotion {
+                        rotation: Some(_),
+                        ..
+                    })
+                )
+        })
+        .collect()
+}
+
+/// Moment of the reaction of a `rigid-motion` patch with a rotation about
+/// the point of its axis at time `t` (the rotation `origin` moved by the
+/// translation): Σ (x_f − o) × F_f over the patch faces, x_f the prescribed
+/// current face centre and F_f the face force of [`patch_reaction`] (the
+/// twisting torque of thesis §5.3.5 is its component along the axis).
+/// Zero for other patches.
+pub fn patch_moment(body: &Body, p: usize, t: f64) -> Vector {
+    let Some(crate::case::BoundarySpec::RigidMotion {
+        translation,
+        rotation: Some(r),
+    }) = &body.patch_specs[p]
+    else {
+        return Vector::zeros();
+    };
+    if body.rigid {
+        return Vector::zeros();
+    }
+    let tr = translation
+        .as_ref()
+        .map(|x| Vector::from(x.at(t)))
+        .unwrap_or_else(Vector::zeros);
+    let o = Vector::from(r.origin) + tr;
+    let ni = body.mesh.n_internal_faces();
+    let fv_discretise::PatchCondition::Displacement(u) = &body.momentum.conditions[p] else {
+        return Vector::zeros();
+    };
+    body.mesh.patches[p]
+        .faces()
+        .zip(u)
+        .map(|(f, u)| {
+            let x = body.initial_face_centres[f - ni] + u;
+            (x - o).cross(&body.momentum.face_force[f - ni])
+        })
+        .sum()
 }
 
 /// One history row, in the order of [`history_columns`].
@@ -106,6 +166,10 @@ pub fn history_row(
     }
     for c in &contacts.interfaces {
         row.push(c.stats.contact_area);
+    }
+    for (bi, p, _) in moment_patches(bodies) {
+        let m = patch_moment(&bodies[bi], p, time);
+        row.extend([m.x, m.y, m.z]);
     }
     row
 }

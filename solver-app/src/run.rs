@@ -200,6 +200,7 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
                 b.refresh_conditions(t1);
                 b.save_start();
             }
+            contacts.set_time(t1);
             contacts.save_start();
             // time step of the temporal term; the matrix diagonal holds m/Δt²
             let mut dt_k = t1 - t0;

@@ -1,6 +1,7 @@
 //! `[[contact]]`: one master/slave patch pair each.
 
 use super::reader::{list, Node, Res};
+use super::values::{scalar_value, ScalarValue};
 
 /// `contact.algorithm`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -48,8 +49,11 @@ pub struct ContactSpec {
     pub coupling: Coupling,
     /// Normal penalty scale f_n^scale of eq. 4.4a (> 0, default 1).
     pub penalty_scale: f64,
-    /// Coulomb friction coefficient μ (>= 0, default 0).
-    pub friction: f64,
+    /// Coulomb friction coefficient μ (>= 0, default 0): a constant or a
+    /// time table `{ table = [[t, μ], ...] }`, evaluated at the end time of
+    /// each increment (e.g. frictionless indentation, then twisting with
+    /// μ = 0.5: thesis §5.3.5).
+    pub friction: ScalarValue,
     /// Tangential penalty scale f_t^scale of eq. 4.4b (> 0, default 1).
     pub tangential_penalty_scale: f64,
     /// Normal traction under-relaxation, in (0, 1] (default 0.1; explicit coupling).
@@ -58,6 +62,22 @@ pub struct ContactSpec {
     pub relaxation_tangential: f64,
     /// Contact search.
     pub detection: Detection,
+}
+
+/// `friction`: μ >= 0, a number or a time table of numbers.
+fn friction(n: &Node<'_>) -> Res<ScalarValue> {
+    let v = scalar_value(n)?;
+    let bad = match &v {
+        ScalarValue::Constant(x) => (!(*x >= 0.0)).then_some(*x),
+        ScalarValue::Table(rows) => rows.iter().map(|r| r.1).find(|x| !(*x >= 0.0)),
+    };
+    match bad {
+        Some(x) => Err(n.err(format!(
+            "friction must be >= 0, got {}",
+            super::reader::fmt_num(x)
+        ))),
+        None => Ok(v),
+    }
 }
 
 fn relaxation(n: &Node<'_>) -> Res<f64> {
@@ -140,7 +160,7 @@ pub(crate) fn contact(node: &Node<'_>, bodies: &[&str]) -> Res<ContactSpec> {
             )
         })?,
         penalty_scale: t.opt("penalty_scale", 1.0, |n| n.positive())?,
-        friction: t.opt("friction", 0.0, |n| n.f64_if(|x| x >= 0.0, "be >= 0"))?,
+        friction: t.opt("friction", ScalarValue::Constant(0.0), friction)?,
         tangential_penalty_scale: t.opt("tangential_penalty_scale", 1.0, |n| n.positive())?,
         relaxation_normal,
         relaxation_tangential,

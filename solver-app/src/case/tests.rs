@@ -766,7 +766,7 @@ material = { model = "linear-elastic", E = 1, nu = 0.3 }
             algorithm: ContactAlgorithm::SegmentToSegment,
             coupling: Coupling::Explicit,
             penalty_scale: 1.0,
-            friction: 0.0,
+            friction: ScalarValue::Constant(0.0),
             tangential_penalty_scale: 1.0,
             relaxation_normal: 0.1,
             relaxation_tangential: 0.1,
@@ -801,8 +801,8 @@ algorithm = "pointwise"
     assert_eq!(k.algorithm, ContactAlgorithm::PointwiseNagata);
     assert_eq!(k.coupling, Coupling::Implicit);
     assert_eq!(
-        (k.penalty_scale, k.friction, k.tangential_penalty_scale),
-        (2.0, 0.3, 0.5)
+        (k.penalty_scale, &k.friction, k.tangential_penalty_scale),
+        (2.0, &ScalarValue::Constant(0.3), 0.5)
     );
     assert_eq!((k.relaxation_normal, k.relaxation_tangential), (0.2, 1.0));
     assert_eq!(k.detection, Detection::Bvh);
@@ -825,6 +825,21 @@ algorithm = "pointwise"
     assert_eq!(e.key.as_deref(), Some("contact[0].slave"));
     let e = bad("master = \"plane/x\"\nslave = \"cyl/x\"\nfriction = -0.1");
     assert_eq!(e.key.as_deref(), Some("contact[0].friction"));
+    // a time table of μ (frictionless indentation, then μ = 0.5)
+    let c = parse(&format!(
+        "{two}[[contact]]\nmaster = \"plane/x\"\nslave = \"cyl/x\"\nfriction = {{ table = [[1.0, 0.0], [1.001, 0.5]] }}\n"
+    ));
+    let mu = &c.contacts[0].friction;
+    assert_eq!(mu, &ScalarValue::Table(vec![(1.0, 0.0), (1.001, 0.5)]));
+    assert_eq!((mu.at(0.5), mu.at(1.0), mu.at(1.1)), (0.0, 0.0, 0.5));
+    let e = bad(
+        "master = \"plane/x\"\nslave = \"cyl/x\"\nfriction = { table = [[0, 0.1], [1, -0.5]] }",
+    );
+    assert_eq!(e.key.as_deref(), Some("contact[0].friction"));
+    assert!(e.message.contains(">= 0"), "{e}");
+    let e =
+        bad("master = \"plane/x\"\nslave = \"cyl/x\"\nfriction = { table = [[1, 0.1], [0, 0.5]] }");
+    assert!(e.message.contains("strictly increasing"), "{e}");
     let e = bad("master = \"plane/x\"\nslave = \"cyl/x\"\npenalty_scale = 0");
     assert_eq!(e.key.as_deref(), Some("contact[0].penalty_scale"));
     let e = bad("master = \"plane/x\"\nslave = \"cyl/x\"\ntangential_penalty_scale = -1");

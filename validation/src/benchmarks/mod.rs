@@ -15,6 +15,7 @@ pub mod rigid_cylinder;
 pub mod shallow_ironing;
 pub mod sphere_block;
 pub mod twisting_blocks;
+pub mod twisting_hemisphere;
 
 use std::path::{Path, PathBuf};
 

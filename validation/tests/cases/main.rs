@@ -25,4 +25,5 @@ mod rigid_cylinder;
 mod shallow_ironing;
 mod sphere_block;
 mod twisting_blocks;
+mod twisting_hemisphere;
 mod uniform_stress;

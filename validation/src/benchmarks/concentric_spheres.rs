@@ -14,7 +14,7 @@
 //! (never copied into the project).
 use std::path::{Path, PathBuf};
 
-use super::{read_case, swap_master_slave, RunCost};
+use super::{extract_polymesh, interpolate, read_case, swap_master_slave, RunCost};
 use crate::run_toml_in_with_history;
 
 /// Which mesh to run.
@@ -102,19 +102,6 @@ pub struct Spheres {
     pub cost: RunCost,
 }
 
-/// Linear interpolation of `(xs, ys)` (xs increasing) at `x`; NaN outside.
-fn interpolate(xs: &[f64], ys: &[f64], x: f64) -> f64 {
-    let i = xs.partition_point(|&v| v < x);
-    if i < xs.len() && (xs[i] - x).abs() <= 1e-9 * x.abs().max(1.0) {
-        return ys[i];
-    }
-    if i == 0 || i >= xs.len() {
-        return f64::NAN;
-    }
-    let (x0, x1, y0, y1) = (xs[i - 1], xs[i], ys[i - 1], ys[i]);
-    y0 + (y1 - y0) * (x - x0) / (x1 - x0)
-}
-
 impl Spheres {
     /// Force at plate displacement `u` (linear between increments; NaN
     /// outside the run).
@@ -154,28 +141,10 @@ pub fn case_text(opts: &Options) -> (PathBuf, String) {
 /// Extracts `../shared/benchmarks/concentric-spheres/mesh/verycoarse.tar.xz`
 /// (the polyMesh in mm) into a fresh temporary folder and returns it.
 pub fn extract_mesh(shared: &Path) -> Result<PathBuf, String> {
-    let archive = shared.join("benchmarks/concentric-spheres/mesh/verycoarse.tar.xz");
-    if !archive.is_file() {
-        return Err(format!("{} is missing", archive.display()));
-    }
-    static RUNS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
-    let dir = std::env::temp_dir().join(format!(
-        "fvc-spheres-{}-{}",
-        std::process::id(),
-        RUNS.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
-    ));
-    std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-    let status = std::process::Command::new("tar")
-        .arg("-xJf")
-        .arg(&archive)
-        .arg("-C")
-        .arg(&dir)
-        .status()
-        .map_err(|e| format!("tar: {e}"))?;
-    if !status.success() || !dir.join("polyMesh/points").is_file() {
-        return Err(format!("tar -xJf {} failed: {status}", archive.display()));
-    }
-    Ok(dir)
+    extract_polymesh(
+        &shared.join("benchmarks/concentric-spheres/mesh/verycoarse.tar.xz"),
+        "spheres",
+    )
 }
 
 /// Runs the case with `opts`; [`Mesh::Benchmark`] needs `shared`

@@ -131,3 +131,49 @@ impl RunCost {
         1e6 * self.wall_seconds / (self.cells.max(1) * self.outer_iterations.max(1)) as f64
     }
 }
+
+/// Linear interpolation of `(xs, ys)` (xs increasing) at `x`; NaN outside
+/// (a curve is not extended beyond its ends).
+pub fn interpolate(xs: &[f64], ys: &[f64], x: f64) -> f64 {
+    let i = xs.partition_point(|&v| v < x);
+    if i < xs.len() && (xs[i] - x).abs() <= 1e-9 * x.abs().max(1.0) {
+        return ys[i];
+    }
+    if i == 0 || i >= xs.len() {
+        return f64::NAN;
+    }
+    let (x0, x1, y0, y1) = (xs[i - 1], xs[i], ys[i - 1], ys[i]);
+    y0 + (y1 - y0) * (x - x0) / (x1 - x0)
+}
+
+/// Extracts a benchmark's polyMesh archive (`tar -xJf`, holding
+/// `polyMesh/`) into a fresh temporary folder named after `tag` and
+/// returns that folder. Meshes in `../shared` are read from there, never
+/// copied into the project.
+pub fn extract_polymesh(archive: &Path, tag: &str) -> Result<PathBuf, String> {
+    static RUNS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    if !archive.is_file() {
+        return Err(format!("{} is missing", archive.display()));
+    }
+    let dir = std::env::temp_dir().join(format!(
+        "fvc-{tag}-{}-{}",
+        std::process::id(),
+        RUNS.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
+    ));
+    std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let status = std::process::Command::new("tar")
+        .arg("-xJf")
+        .arg(archive)
+        .arg("-C")
+        .arg(&dir)
+        .status()
+        .map_err(|e| format!("tar -xJf {}: {e}", archive.display()))?;
+    if !status.success() || !dir.join("polyMesh/points").is_file() {
+        return Err(format!(
+            "tar -xJf {} into {} failed ({status})",
+            archive.display(),
+            dir.display()
+        ));
+    }
+    Ok(dir)
+}

@@ -7,7 +7,7 @@
 //! oscillates while the block slides.
 use std::path::Path;
 
-use super::{cases_dir, read_case, swap_master_slave, RunCost};
+use super::{cases_dir, interpolate, read_case, swap_master_slave, RunCost};
 use crate::run_toml_in_with_history;
 
 /// μ_g = H/V at t = 1.5 of the thesis (table 5.2).
@@ -67,19 +67,6 @@ pub struct Ironing {
     pub failure: Option<String>,
     /// Cost of the run.
     pub cost: RunCost,
-}
-
-/// Linear interpolation of `(xs, ys)` (xs increasing) at `x`; NaN outside.
-fn interpolate(xs: &[f64], ys: &[f64], x: f64) -> f64 {
-    let i = xs.partition_point(|&v| v < x);
-    if i < xs.len() && (xs[i] - x).abs() <= 1e-9 * x.abs().max(1.0) {
-        return ys[i];
-    }
-    if i == 0 || i >= xs.len() {
-        return f64::NAN;
-    }
-    let (x0, x1, y0, y1) = (xs[i - 1], xs[i], ys[i - 1], ys[i]);
-    y0 + (y1 - y0) * (x - x0) / (x1 - x0)
 }
 
 impl Ironing {

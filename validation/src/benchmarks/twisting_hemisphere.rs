@@ -21,7 +21,7 @@
 //! in N·mm as stored.
 use std::path::{Path, PathBuf};
 
-use super::{cases_dir, read_case, swap_master_slave, RunCost};
+use super::{cases_dir, extract_polymesh, interpolate, read_case, swap_master_slave, RunCost};
 use crate::run_toml_in_with_history;
 
 /// Which mesh the case runs on.
@@ -111,19 +111,6 @@ pub fn angle_of(t: f64) -> f64 {
     ((t - 1.0) * 20.0).max(0.0)
 }
 
-/// Linear interpolation of `(xs, ys)` (xs increasing) at `x`; NaN outside.
-fn interpolate(xs: &[f64], ys: &[f64], x: f64) -> f64 {
-    let i = xs.partition_point(|&v| v < x);
-    if i < xs.len() && (xs[i] - x).abs() <= 1e-9 * x.abs().max(1.0) {
-        return ys[i];
-    }
-    if i == 0 || i >= xs.len() {
-        return f64::NAN;
-    }
-    let (x0, x1, y0, y1) = (xs[i - 1], xs[i], ys[i - 1], ys[i]);
-    y0 + (y1 - y0) * (x - x0) / (x1 - x0)
-}
-
 impl Twist {
     /// (F_z, M) at pseudo-time `t` (linear between increments; NaN outside).
     pub fn at_time(&self, t: f64) -> (f64, f64) {
@@ -164,29 +151,10 @@ fn benchmark_dir(shared: &Path) -> PathBuf {
 /// Extracts the coarse polyMesh of `shared` into a fresh temporary folder
 /// (which then holds `polyMesh/`) and returns that folder.
 pub fn extract_mesh(shared: &Path) -> Result<PathBuf, String> {
-    static RUNS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
-    let archive = benchmark_dir(shared).join("mesh/polyMesh_coarse.tar.xz");
-    let dir = std::env::temp_dir().join(format!(
-        "fvc-twisting-hemisphere-{}-{}",
-        std::process::id(),
-        RUNS.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
-    ));
-    std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-    let status = std::process::Command::new("tar")
-        .arg("-xJf")
-        .arg(&archive)
-        .arg("-C")
-        .arg(&dir)
-        .status()
-        .map_err(|e| format!("tar -xJf {}: {e}", archive.display()))?;
-    if !status.success() || !dir.join("polyMesh/points").is_file() {
-        return Err(format!(
-            "tar -xJf {} into {} failed ({status})",
-            archive.display(),
-            dir.display()
-        ));
-    }
-    Ok(dir)
+    extract_polymesh(
+        &benchmark_dir(shared).join("mesh/polyMesh_coarse.tar.xz"),
+        "twisting-hemisphere",
+    )
 }
 
 /// The case text for `opts`: the time intervals, coupling and master

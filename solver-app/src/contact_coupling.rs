@@ -288,6 +288,9 @@ pub struct ContactSet {
     updates_in_increment: usize,
     /// Seconds in detection and in the contact force.
     pub times: crate::profile::PhaseTimes,
+    /// `FVC_TRACE=2`: print the contact statistics of every update (read
+    /// once, not per outer iteration).
+    trace: bool,
 }
 
 fn side(
@@ -399,6 +402,7 @@ impl ContactSet {
             cell_to_point: (0..bodies.len()).map(|_| None).collect(),
             updates_in_increment: 0,
             times: Default::default(),
+            trace: std::env::var_os("FVC_TRACE").is_some_and(|v| v == "2"),
         };
         for (ci, c) in case.contacts.iter().enumerate() {
             let key = format!("contact[{ci}]");
@@ -698,7 +702,7 @@ impl ContactSet {
                 .apply(&ci.tractions, &mut ci.master.applied, &mut ci.slave.applied)
                 .map_err(|e| format!("contact {}: {e}", ci.slave_name))?;
             max_change = max_change.max(info.relative_change());
-            if std::env::var_os("FVC_TRACE").is_some_and(|v| v == "2") {
+            if self.trace {
                 eprintln!(
                     "    contact {}: force {:.6e} slave force {:.4e} {:.4e} stick {} slip {} max pen {:.4e} area {:.4e} eps {:.3e}",
                     ci.slave_name,

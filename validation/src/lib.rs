@@ -97,6 +97,14 @@ impl HistoryTable {
         };
         self.rows.iter().map(|r| r[c]).collect()
     }
+
+    /// The `outer_iterations` column as counts.
+    pub fn outer_iterations(&self) -> Vec<usize> {
+        self.column("outer_iterations")
+            .iter()
+            .map(|&n| n as usize)
+            .collect()
+    }
 }
 
 /// Like [`run_toml`] but writes the results into a fresh temporary folder

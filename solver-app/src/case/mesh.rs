@@ -187,6 +187,18 @@ fn generate_box(t: &Table<'_>) -> Res<MeshSpec> {
     })
 }
 
+/// `r_inner > 0` and `r_outer > r_inner` of the annulus and the shell.
+fn radii(t: &Table<'_>) -> Res<(f64, f64)> {
+    let r_inner = t.need("r_inner", |n| n.positive())?;
+    let r_outer = t.need("r_outer", |n| {
+        n.f64_if(
+            |x| x > r_inner,
+            &format!("exceed r_inner = {}", fmt_num(r_inner)),
+        )
+    })?;
+    Ok((r_inner, r_outer))
+}
+
 fn generate_annulus(t: &Table<'_>) -> Res<MeshSpec> {
     t.deny_unknown(&[
         "generator",
@@ -200,13 +212,7 @@ fn generate_annulus(t: &Table<'_>) -> Res<MeshSpec> {
         "radial_grading",
         "translate",
     ])?;
-    let r_inner = t.need("r_inner", |n| n.positive())?;
-    let r_outer = t.need("r_outer", |n| {
-        n.f64_if(
-            |x| x > r_inner,
-            &format!("exceed r_inner = {}", fmt_num(r_inner)),
-        )
-    })?;
+    let (r_inner, r_outer) = radii(t)?;
     let theta0 = t.opt("theta0", 0.0, |n| n.f64())?;
     let theta1 = t.opt("theta1", 90.0, |n| {
         n.f64_if(
@@ -254,13 +260,7 @@ fn generate_spherical_shell(t: &Table<'_>) -> Res<MeshSpec> {
         "radial_grading",
         "translate",
     ])?;
-    let r_inner = t.need("r_inner", |n| n.positive())?;
-    let r_outer = t.need("r_outer", |n| {
-        n.f64_if(
-            |x| x > r_inner,
-            &format!("exceed r_inner = {}", fmt_num(r_inner)),
-        )
-    })?;
+    let (r_inner, r_outer) = radii(t)?;
     let part = t.need("part", |n| {
         n.choice(
             "shell part",

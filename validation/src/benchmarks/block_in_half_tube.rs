@@ -182,11 +182,7 @@ pub fn run(tube: Tube, algorithm: &str, slide: f64, steps: usize) -> BlockInHalf
         tube,
         displacement: history.column("time"),
         force: history.column("block/top:Fx"),
-        outer_iterations: history
-            .column("outer_iterations")
-            .iter()
-            .map(|&x| x as usize)
-            .collect(),
+        outer_iterations: history.outer_iterations(),
         converged: out.converged,
         failure: out.failure.clone(),
         cost,

@@ -167,11 +167,7 @@ pub fn run(opts: &Options, shared: Option<&Path>) -> Result<Spheres, String> {
     Ok(Spheres {
         displacement: history.column("time"),
         force: history.column(opts.mesh.names().3),
-        outer_iterations: history
-            .column("outer_iterations")
-            .iter()
-            .map(|&n| n as usize)
-            .collect(),
+        outer_iterations: history.outer_iterations(),
         converged: out.converged,
         failure: out.failure.clone(),
         cost: RunCost::of(&out),

@@ -157,11 +157,7 @@ pub fn run(opts: &Options) -> Ironing {
         time: history.column("time"),
         horizontal: history.column("block/top:Fx"),
         vertical: history.column("block/top:Fy").iter().map(|f| -f).collect(),
-        outer_iterations: history
-            .column("outer_iterations")
-            .iter()
-            .map(|&n| n as usize)
-            .collect(),
+        outer_iterations: history.outer_iterations(),
         converged: out.converged,
         failure: out.failure.clone(),
         cost: RunCost::of(&out),

@@ -206,11 +206,7 @@ pub fn run(shared: Option<&Path>, opts: &Options) -> Result<Twist, String> {
             .iter()
             .map(|m| m.abs())
             .collect(),
-        outer_iterations: history
-            .column("outer_iterations")
-            .iter()
-            .map(|&n| n as usize)
-            .collect(),
+        outer_iterations: history.outer_iterations(),
         converged: out.converged,
         failure: out.failure.clone(),
         cost: RunCost::of(&out),

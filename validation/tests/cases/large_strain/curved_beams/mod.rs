@@ -9,7 +9,7 @@
 //! μ = 0.3 slide at penalty_scale 2 for issue 8's penetration (60 s); the
 //! other full slides take about a minute each and are `--ignored`.
 use validation::benchmarks::{read_case, swap_master_slave};
-use validation::run_toml_with_history;
+use validation::{run_toml_with_history, HistoryTable};
 
 /// Peaks of the reaction on the upper beam's driven ends.
 struct Peaks {
@@ -33,19 +33,9 @@ fn reaction_peaks(mu: f64, until: f64, swap: bool) -> Peaks {
     }
     let (out, history) = run_toml_with_history(&text);
     assert!(out.converged, "μ = {mu}: {:?}", out.failure);
-    let t = history.column("time");
-    let peak = |component: &str| {
-        let a = history.column(&format!("upper/start:{component}"));
-        let b = history.column(&format!("upper/end:{component}"));
-        a.iter()
-            .zip(&b)
-            .map(|(a, b)| (a + b).abs())
-            .zip(&t)
-            .fold((0.0, 0.0), |m, (f, &t)| if f > m.0 { (f, t) } else { m })
-    };
     let p = Peaks {
-        fx: peak("Fx"),
-        fy: peak("Fy"),
+        fx: driven_end_peak(&history, "Fx"),
+        fy: driven_end_peak(&history, "Fy"),
     };
     eprintln!(
         "curved beams μ = {mu}{}: peak |Fx| {:.3} N at {:.1} mm, |Fy| {:.3} N at {:.1} mm; {} outer iterations ({:.0} per increment), {:.0} s",
@@ -59,6 +49,19 @@ fn reaction_peaks(mu: f64, until: f64, swap: bool) -> Peaks {
         out.summary.wall_seconds
     );
     p
+}
+
+/// Largest |F| of `component` of the reaction on the upper beam's two
+/// driven ends, and the slide (mm, the time) where it occurs.
+fn driven_end_peak(history: &HistoryTable, component: &str) -> (f64, f64) {
+    let t = history.column("time");
+    let a = history.column(&format!("upper/start:{component}"));
+    let b = history.column(&format!("upper/end:{component}"));
+    a.iter()
+        .zip(&b)
+        .map(|(a, b)| (a + b).abs())
+        .zip(&t)
+        .fold((0.0, 0.0), |m, (f, &t)| if f > m.0 { (f, t) } else { m })
 }
 
 fn assert_within(what: &str, measured: f64, reference: f64, limit: f64) {
@@ -153,14 +156,10 @@ fn implicit_coupling_average_penetration_under_one_percent() {
     let mean = relative.iter().sum::<f64>() / relative.len() as f64;
     let largest = relative.iter().fold(0.0f64, |m, &r| m.max(r));
     let t = history.column("time");
-    let peak = |component: &str| {
-        let a = history.column(&format!("upper/start:{component}"));
-        let b = history.column(&format!("upper/end:{component}"));
-        a.iter()
-            .zip(&b)
-            .fold(0.0f64, |m, (a, b)| m.max((a + b).abs()))
-    };
-    let (fx, fy) = (peak("Fx"), peak("Fy"));
+    let (fx, fy) = (
+        driven_end_peak(&history, "Fx").0,
+        driven_end_peak(&history, "Fy").0,
+    );
     eprintln!(
         "curved beams μ = 0.3, implicit, penalty_scale {PENALTY_SCALE}: average relative penetration {:.2} % (largest {:.2} %), |Fx| {fx:.3}, |Fy| {fy:.3} N, {:.0} outer iterations per increment, {:.0} s",
         100.0 * mean,

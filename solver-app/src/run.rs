@@ -190,6 +190,7 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
         let mut t0 = t_prev;
         let mut h = t - t_prev;
         let mut cuts = 0;
+        let mut total_converged = true;
         let result = loop {
             let t1 = if t0 + h >= t - 1e-9 * (t - t_prev) {
                 t
@@ -264,11 +265,24 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
                     total.outer_iterations += info.outer_iterations;
                     total.linear_iterations += info.linear_iterations;
                     total.residual = info.residual;
-                    total.converged = info.converged;
-                    if t1 == t || !info.converged {
-                        break Ok(total);
+                    total.converged = total_converged && info.converged;
+                    let go_on = info.converged
+                        || case.solver.on_nonconvergence == OnNonConvergence::Continue;
+                    if t1 == t || !go_on {
+                        // the fields are those of t1: an unconverged
+                        // sub-step under `abort` is reported at its own time
+                        break Ok((total, t1));
                     }
-                    // a converged sub-step: accept it and go on
+                    if !info.converged {
+                        // `continue`: keep the unconverged sub-step and go on
+                        // to the end of the increment
+                        log.warn(&format!(
+                            "increment {k}: sub-step t = {t0:.6e} → {t1:.6e} did not converge in {} outer iterations (residual {:.3e}); continuing",
+                            info.outer_iterations, info.residual
+                        ));
+                        total_converged = false;
+                    }
+                    // a sub-step: accept it and go on
                     if let Err(e) = accept_increment(
                         &mut bodies,
                         &mut contacts,
@@ -285,7 +299,7 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
         };
         t_prev = t;
         match result {
-            Ok(info) => {
+            Ok((info, t)) => {
                 summary.increments = k;
                 summary.outer_iterations += info.outer_iterations;
                 summary.linear_iterations += info.linear_iterations;

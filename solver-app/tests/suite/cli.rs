@@ -298,3 +298,56 @@ value = [0, 0, 0]
         "{err}"
     );
 }
+
+/// Runs GOOD with `max_outer = 2` (every attempt fails, every cut-back
+/// too) under the given `on_nonconvergence`; returns the exit code and the
+/// (time, block/ymax:Fy) rows of history.csv.
+fn run_unconverged(policy: &str) -> (i32, Vec<(f64, f64)>, String) {
+    let dir = tempfile::tempdir().unwrap();
+    let case = GOOD.replace(
+        "tolerance = 1e-6",
+        &format!("tolerance = 1e-12\nmax_outer = 2\non_nonconvergence = \"{policy}\""),
+    );
+    let p = write(dir.path(), "case.toml", case.as_bytes());
+    let outdir = dir.path().join("out");
+    let (code, _, err) = fvc(&[
+        "run",
+        p.to_str().unwrap(),
+        "--output",
+        outdir.to_str().unwrap(),
+        "--quiet",
+    ]);
+    let hist = std::fs::read_to_string(outdir.join("block/history.csv")).unwrap();
+    let mut lines = hist.lines();
+    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let fy = head.iter().position(|h| *h == "block/ymax:Fy").unwrap();
+    let rows = lines
+        .map(|l| {
+            let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+            (v[0], v[fy])
+        })
+        .collect();
+    (code, rows, err)
+}
+
+/// A sub-step that fails after the last cut-back: under `continue` the
+/// increment goes on to its end time (the fields then belong to that time);
+/// under `abort` the run stops and the history row carries the time the
+/// fields belong to, the first sub-step's (0.5/2⁴), not the increment's.
+#[test]
+fn unconverged_sub_steps_are_reported_at_their_own_time() {
+    // `continue` warns and goes on: exit 0 (CASE_FORMAT.md, "Exit codes")
+    let (code, rows, err) = run_unconverged("continue");
+    assert_eq!(code, 0, "{err}");
+    let times: Vec<f64> = rows.iter().map(|r| r.0).collect();
+    assert_eq!(times, vec![0.5, 1.0], "{err}");
+    // the boundary moved the full 0.01 by t = 1: the reaction is of the
+    // converged order (E ε A = 2 N), not of one sixteenth of the step
+    let fy = rows[1].1;
+    assert!(fy < -1.0, "reaction at t = 1: {fy}");
+
+    let (code, rows, err) = run_unconverged("abort");
+    assert_eq!(code, 1, "{err}");
+    assert_eq!(rows.len(), 1, "{err}");
+    assert!((rows[0].0 - 0.5 / 16.0).abs() < 1e-12, "{rows:?}");
+}

@@ -267,6 +267,10 @@ pub struct ContactInterface {
     /// `coupling` (its accumulated tractions λ of eq. 4.13) at the start of
     /// the current attempt at an increment.
     coupling_saved: ExplicitRelaxation,
+    /// The GGI weights of the last contact update before the attempt: the
+    /// first outer iteration of a redone attempt averages the opposite
+    /// cells with them (eq. 4.69), as `opposite_reference` was averaged.
+    ggi_saved: GgiWeights,
     /// The configured tangential relaxation (before any damping).
     tangential_relaxation: f64,
     /// Implicit coupling (thesis §4.5): linearised normal traction.
@@ -490,6 +494,7 @@ impl ContactSet {
                 materials,
                 penalty_localised: false,
                 coupling_saved: coupling.clone(),
+                ggi_saved: GgiWeights::new(),
                 coupling,
                 tangential_relaxation,
                 implicit,
@@ -801,6 +806,7 @@ impl ContactSet {
         self.updates_in_increment = 0;
         for ci in &mut self.interfaces {
             ci.coupling_saved.clone_from(&ci.coupling);
+            ci.ggi_saved.clone_from(&ci.tractions.ggi);
             for side in [&mut ci.master, &mut ci.slave] {
                 side.saved.0.clone_from(&side.applied);
                 side.saved.1.clone_from(&side.beta);
@@ -817,6 +823,10 @@ impl ContactSet {
             // attempt leaves them huge or non-finite, and the next attempt
             // would start from them
             ci.coupling.clone_from(&ci.coupling_saved);
+            // the failed attempt's last weights pair other faces (or none,
+            // after a blow-up): measured with them, the opposite cells'
+            // motion since `opposite_reference` would be spurious
+            ci.tractions.ggi.clone_from(&ci.ggi_saved);
             for side in [&mut ci.master, &mut ci.slave] {
                 side.applied.clone_from(&side.saved.0);
                 side.beta.clone_from(&side.saved.1);

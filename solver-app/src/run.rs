@@ -96,8 +96,9 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
     let mut bodies = set_up(case)?;
     let mut contacts = ContactSet::new(case, &bodies)?;
     contacts.prepare_conditions(&mut bodies);
-    // FVC_TRACE=1 prints the residual of every outer iteration (debugging aid)
-    let trace_outer = std::env::var_os("FVC_TRACE").is_some_and(|v| v == "1");
+    // FVC_TRACE=1 prints the residual of every outer iteration, 2 also the
+    // contact statistics (debugging aid)
+    let trace_outer = std::env::var_os("FVC_TRACE").is_some_and(|v| v == "1" || v == "2");
     let dir = if opts.no_files {
         None
     } else {

@@ -141,6 +141,14 @@ impl ExplicitRelaxation {
         self.tangential
     }
 
+    /// Sets α_n (clamped to (0, 1]), e.g. to damp an open–close cycle of
+    /// the contact set.
+    pub fn set_normal_factor(&mut self, normal: Real) {
+        if normal > 0.0 {
+            self.normal = normal.min(1.0);
+        }
+    }
+
     /// Sets α_t (clamped to (0, 1]), e.g. to damp a stick–slip cycle.
     pub fn set_tangential_factor(&mut self, tangential: Real) {
         if tangential > 0.0 {

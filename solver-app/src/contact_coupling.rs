@@ -672,6 +672,15 @@ impl ContactSet {
             let start = std::time::Instant::now();
             ci.coupling
                 .set_tangential_factor(ci.tangential_relaxation * damping);
+            if ci.implicit {
+                // implicit coupling: the linearised springs carry the
+                // convergence and the relaxation of t* only damps; a cycle of
+                // faces that open and close (coincident faceted spheres, a
+                // period-4 cycle of the contact area 3 → 22 mm²) is damped
+                // the same way as a stick–slip cycle
+                ci.coupling
+                    .set_normal_factor(IMPLICIT_NORMAL_RELAXATION * damping);
+            }
             Self::move_side(&mut ci.master, bodies, &self.cell_to_point);
             Self::move_side(&mut ci.slave, bodies, &self.cell_to_point);
             ci.detector

@@ -71,6 +71,8 @@ pub struct Options {
     pub swapped: bool,
     /// Which mesh.
     pub mesh: Mesh,
+    /// `penalty_scale` of every contact (1 as shipped).
+    pub penalty_scale: f64,
 }
 
 impl Default for Options {
@@ -81,6 +83,7 @@ impl Default for Options {
             friction: 0.0,
             swapped: false,
             mesh: Mesh::Coarse,
+            penalty_scale: 1.0,
         }
     }
 }
@@ -131,7 +134,11 @@ pub fn case_text(opts: &Options) -> (PathBuf, String) {
     text = text
         .replace("end = 9.0", &format!("end = {}", opts.until))
         .replace("steps = 90", &format!("steps = {steps}"))
-        .replace("friction = 0.0", &format!("friction = {:?}", opts.friction));
+        .replace("friction = 0.0", &format!("friction = {:?}", opts.friction))
+        .replace(
+            "penalty_scale = 1.0",
+            &format!("penalty_scale = {:?}", opts.penalty_scale),
+        );
     if opts.swapped {
         text = swap_master_slave(&text, master, slave);
     }

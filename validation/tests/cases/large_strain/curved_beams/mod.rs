@@ -120,14 +120,16 @@ fn high_friction_full_slide_against_neto() {
 /// The relative penetration is the mean penetration F_n/(ε_n A) over the
 /// contact cell height h̄ = Ω_c/Γ_c of eq. 4.4a, i.e. with ε_n = f E/h̄ the
 /// mean pressure over f E; averaged over the increments in contact.
-/// Measured (penalty_scale = 2): 0.69 % (largest increment 1.98 %), peaks
-/// |Fx| 16.967 N (−1.9 %), |Fy| 38.680 N (−0.8 %), 1,527 outer iterations
-/// per increment, 60 s; with penalty_scale = 1 (the case as shipped)
-/// 1.17 % and the same peaks within 0.06 %.
+/// Measured (penalty_scale = 4): 0.43 % (largest increment 1.37 %), peaks
+/// |Fx| 16.972 N (−1.9 %), |Fy| 38.677 N (−0.8 %), 1,507 outer iterations
+/// per increment, 45 s; penalty_scale = 2: 0.69 %; 1 (the case as
+/// shipped): 1.17 %, the same peaks within 0.06 %. Scales from 3 up
+/// stalled in an open–close cycle until the relaxation of t* was damped
+/// like the tangential one.
 #[test]
 fn implicit_coupling_average_penetration_under_one_percent() {
     const E: f64 = 689.56;
-    const PENALTY_SCALE: f64 = 2.0;
+    const PENALTY_SCALE: f64 = 4.0;
     let (_, text) = read_case("curved-beams", "case.toml");
     // the shipped case leaves the penalty at its default (scale 1)
     assert!(!text

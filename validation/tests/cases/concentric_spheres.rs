@@ -109,10 +109,10 @@ fn run_or_panic(opts: &Options) -> Spheres {
 }
 
 /// Shipped coarse case (generated mesh), frictionless, first 3 mm.
-/// Measured: 0.533 N at 1.5 mm (−6.2 % on the Abaqus/FEBio mean), 0.726 N
-/// at 2 mm (−7.9 %), 1.212 N at 3 mm (−4.4 %); 240 outer iterations per
-/// increment. The 5 % of the benchmark is met at 3 mm, not at 1.5–2 mm
-/// (penalty_scale = 1 lets the plate sink ~0.1 mm into the outer sphere).
+/// Measured: 0.562 N at 1.5 mm (−1.0 % on the Abaqus/FEBio mean), 0.792 N
+/// at 2 mm (+0.5 %), 1.307 N at 3 mm (+3.1 %); 102 outer iterations per
+/// increment. With the thesis's Rhie–Chow 0.1 it was −6.2 / −7.9 / −4.4 %
+/// at 240 per increment (the shells' odd–even mode made them too soft).
 #[test]
 fn coarse_first_3_mm_against_abaqus_febio() {
     let r = run_or_panic(&Options {
@@ -125,7 +125,11 @@ fn coarse_first_3_mm_against_abaqus_febio() {
     let at3 = (r.force_at(3.0) / FRICTIONLESS_MEAN[2].1 - 1.0).abs();
     assert!(at3 < TOLERANCE, "F(3 mm) off by {:.1} %", 100.0 * at3);
     let worst = worst_frictionless(&r, 1.5, 3.0);
-    assert!(worst < 0.10, "off by {:.1} % over 1.5–3 mm", 100.0 * worst);
+    assert!(
+        worst < TOLERANCE,
+        "off by {:.1} % over 1.5–3 mm",
+        100.0 * worst
+    );
 }
 
 /// Issue 8 (robustness): the coarse case with twice the penalty on all
@@ -133,9 +137,8 @@ fn coarse_first_3_mm_against_abaqus_febio() {
 /// the sphere–sphere contact area (3 → 22 mm², faces of the coincident
 /// faceted spheres opening and closing) and now runs, the relaxation of
 /// the linearised traction being damped in lasting cycles. Measured:
-/// 0.748 N at 2 mm (−5.0 % on the Abaqus/FEBio mean; −7.9 % at scale 1),
-/// 1.230 N at 3 mm (−3.0 %); ~300 outer iterations per increment. (Run on,
-/// it reaches 7.4 mm, where the outer sphere's moved mesh inverts a cell.)
+/// 0.803 N at 2 mm (+1.9 % on the Abaqus/FEBio mean; +0.5 % at scale 1),
+/// 1.331 N at 3 mm (+5.0 %; +3.1 %); 226 outer iterations per increment.
 #[test]
 fn coarse_twice_the_penalty_first_3_mm() {
     let r = run_or_panic(&Options {
@@ -147,15 +150,15 @@ fn coarse_twice_the_penalty_first_3_mm() {
     assert!(r.converged, "{:?}", r.failure);
     assert!((r.reached() - 3.0).abs() < 1e-9, "reached {}", r.reached());
     let at3 = (r.force_at(3.0) / FRICTIONLESS_MEAN[2].1 - 1.0).abs();
-    assert!(at3 < 0.04, "F(3 mm) off by {:.1} %", 100.0 * at3);
+    assert!(at3 < 0.06, "F(3 mm) off by {:.1} %", 100.0 * at3);
     let at2 = (r.force_at(2.0) / FRICTIONLESS_MEAN[1].1 - 1.0).abs();
     assert!(at2 < 0.06, "F(2 mm) off by {:.1} %", 100.0 * at2);
 }
 
 /// The benchmark's own coarse polyMesh (thesis coarse mesh), frictionless,
-/// first 3 mm: 0.528 N at 1.5 mm, 0.723 N at 2 mm, 1.203 N at 3 mm (−7.0,
-/// −8.2, −5.1 % on the Abaqus/FEBio mean); 230 outer iterations per
-/// increment.
+/// first 3 mm: 0.543 N at 1.5 mm, 0.760 N at 2 mm, 1.229 N at 3 mm (−4.4,
+/// −3.6, −3.1 % on the Abaqus/FEBio mean); 99 outer iterations per
+/// increment (Rhie–Chow 0.1: −7.0, −8.2, −5.1 % at 230).
 #[test]
 fn benchmark_mesh_first_3_mm_against_abaqus_febio() {
     if shared_dir().is_none() {
@@ -170,7 +173,11 @@ fn benchmark_mesh_first_3_mm_against_abaqus_febio() {
     report("benchmark polyMesh, μ = 0, 3 mm", &r, &curves(false));
     assert!(r.converged, "{:?}", r.failure);
     let worst = worst_frictionless(&r, 1.5, 3.0);
-    assert!(worst < 0.10, "off by {:.1} % over 1.5–3 mm", 100.0 * worst);
+    assert!(
+        worst < TOLERANCE,
+        "off by {:.1} % over 1.5–3 mm",
+        100.0 * worst
+    );
 }
 
 /// The benchmark's acceptance on a full run: reaches 9 mm, force within

@@ -14,9 +14,10 @@ use validation::benchmarks::twisting_hemisphere::{
 use validation::shared_dir;
 
 /// F_z at t = 0.3 (0.3 mm of the 1 mm indentation) measured as shipped
-/// (implicit coupling, block master, generated mesh), N. The benchmark's
-/// polyMesh gives 0.9332 (+0.8 %).
-const FZ_INDENTATION_03: f64 = 0.9260;
+/// (implicit coupling, block master, generated mesh, Rhie–Chow 1), N.
+/// With the thesis's Rhie–Chow 0.1 it was 0.9260 and the benchmark's
+/// polyMesh gave 0.9332.
+const FZ_INDENTATION_03: f64 = 0.9680;
 
 fn report(label: &str, r: &Twist) {
     eprintln!(
@@ -43,8 +44,9 @@ fn report(label: &str, r: &Twist) {
 }
 
 /// The first 0.3 mm of the indentation as shipped (3 increments of
-/// 0.1 mm, each redone in eighths by the cut-backs; ~30 s): F_z(t = 0.3) =
-/// 0.926 N, and no twisting moment while the contact is frictionless and
+/// 0.1 mm, 126 outer iterations each; 6 s): F_z(t = 0.3) = 0.968 N
+/// (0.926 N with the thesis's Rhie–Chow 0.1, whose increments had to be
+/// redone in eighths), and no twisting moment while the contact is frictionless and
 /// the motion a pure translation (this also checks that the `friction`
 /// table keeps μ = 0 before t = 1, and the moment column).
 #[test]

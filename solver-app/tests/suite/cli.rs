@@ -40,7 +40,9 @@ fn write(dir: &Path, name: &str, bytes: &[u8]) -> PathBuf {
 }
 
 /// Runs `fvc run` on a case and expects exit 2 with every `expected` piece in stderr.
-fn expect_input_error(dir: &Path, case: &[u8], expected: &[&str]) {
+/// Writes `case` to `dir/case.toml` and runs `fvc run … --output dir/out
+/// --quiet` on it; returns the exit code, the output folder and stderr.
+fn run_quietly(dir: &Path, case: &[u8]) -> (i32, PathBuf, String) {
     let p = write(dir, "case.toml", case);
     let outdir = dir.join("out");
     let (code, _, err) = fvc(&[
@@ -50,6 +52,11 @@ fn expect_input_error(dir: &Path, case: &[u8], expected: &[&str]) {
         outdir.to_str().unwrap(),
         "--quiet",
     ]);
+    (code, outdir, err)
+}
+
+fn expect_input_error(dir: &Path, case: &[u8], expected: &[&str]) {
+    let (code, _, err) = run_quietly(dir, case);
     assert_eq!(code, 2, "exit code for {expected:?}; stderr: {err}");
     for e in expected {
         assert!(err.contains(e), "stderr lacks {e:?}:\n{err}");
@@ -60,15 +67,7 @@ fn expect_input_error(dir: &Path, case: &[u8], expected: &[&str]) {
 #[test]
 fn good_case_runs_and_writes_results() {
     let dir = tempfile::tempdir().unwrap();
-    let p = write(dir.path(), "case.toml", GOOD.as_bytes());
-    let outdir = dir.path().join("out");
-    let (code, _, err) = fvc(&[
-        "run",
-        p.to_str().unwrap(),
-        "--output",
-        outdir.to_str().unwrap(),
-        "--quiet",
-    ]);
+    let (code, outdir, err) = run_quietly(dir.path(), GOOD.as_bytes());
     assert_eq!(code, 0, "{err}");
     let res = outdir.join("block");
     let summary = std::fs::read_to_string(res.join("summary.json")).unwrap();
@@ -308,15 +307,7 @@ fn run_unconverged(policy: &str) -> (i32, Vec<(f64, f64)>, String) {
         "tolerance = 1e-6",
         &format!("tolerance = 1e-12\nmax_outer = 2\non_nonconvergence = \"{policy}\""),
     );
-    let p = write(dir.path(), "case.toml", case.as_bytes());
-    let outdir = dir.path().join("out");
-    let (code, _, err) = fvc(&[
-        "run",
-        p.to_str().unwrap(),
-        "--output",
-        outdir.to_str().unwrap(),
-        "--quiet",
-    ]);
+    let (code, outdir, err) = run_quietly(dir.path(), case.as_bytes());
     let hist = std::fs::read_to_string(outdir.join("block/history.csv")).unwrap();
     let mut lines = hist.lines();
     let head: Vec<&str> = lines.next().unwrap().split(',').collect();

@@ -86,7 +86,9 @@ fn frictionless_fx_peak_within_three_percent_of_neto() {
     assert!((p.fx.1 - 7.0).abs() <= 1.0, "{}", p.fx.1);
 }
 
-/// The full slide, frictionless.
+/// The full slide, frictionless. Measured (Rhie–Chow 1): lower master
+/// |Fx| 9.690 N at 8.0 mm (+2.0 %), |Fy| 35.691 N at 18.0 mm (−0.0 %), 838
+/// outer iterations per increment; upper master the same to 0.003 %.
 #[test]
 #[ignore]
 fn frictionless_full_slide_against_neto() {
@@ -97,7 +99,9 @@ fn frictionless_full_slide_against_neto() {
     }
 }
 
-/// The full slide with μ = 0.3.
+/// The full slide with μ = 0.3. Measured (Rhie–Chow 1): lower master
+/// |Fx| 17.221 N (−0.5 %), |Fy| 38.915 N (−0.2 %), 1,457 outer iterations
+/// per increment; upper master 17.221 / 38.913 N.
 #[test]
 #[ignore]
 fn frictional_full_slide_against_neto() {
@@ -108,7 +112,9 @@ fn frictional_full_slide_against_neto() {
     }
 }
 
-/// The full slide with μ = 0.6.
+/// The full slide with μ = 0.6. Measured (Rhie–Chow 1): FAILS — |Fx|
+/// 26.546 N (−4.2 %), |Fy| 42.491 N (−6.8 %), 1,190 outer iterations per
+/// increment.
 #[test]
 #[ignore]
 fn high_friction_full_slide_against_neto() {

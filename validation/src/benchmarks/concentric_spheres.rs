@@ -122,6 +122,27 @@ impl Spheres {
         self.outer_iterations.iter().sum::<usize>() as f64
             / self.outer_iterations.len().max(1) as f64
     }
+
+    /// Largest |F/F_mean − 1| against the Abaqus/FEBio mean of `curves`
+    /// ([`abaqus_febio_mean`]) at every increment with `from ≤ u ≤ to`
+    /// (the benchmark's acceptance: [`TOLERANCE`] from 1.5 to 4.5 mm).
+    pub fn worst_against(&self, curves: &[ReferenceCurve], from: f64, to: f64) -> f64 {
+        self.displacement
+            .iter()
+            .zip(&self.force)
+            .filter(|(u, _)| **u >= from - 1e-9 && **u <= to + 1e-9)
+            .map(|(&u, &f)| (f / abaqus_febio_mean(curves, u) - 1.0).abs())
+            .fold(0.0, f64::max)
+    }
+
+    /// Plate displacement of the last increment before the force first
+    /// falls (the buckling of the inner sphere), if it does.
+    pub fn buckling(&self) -> Option<f64> {
+        self.force
+            .windows(2)
+            .position(|w| w[1] < w[0])
+            .map(|i| self.displacement[i])
+    }
 }
 
 /// The case text for `opts` and the folder its mesh paths are relative

@@ -7,6 +7,7 @@
 //! A new benchmark is one file implementing [`Section`] and one line in
 //! [`sections`].
 pub mod concentric_cylinders;
+pub mod concentric_spheres;
 pub mod flat_punch;
 pub mod hertz_cylinder;
 pub mod nafems_punch;
@@ -27,6 +28,7 @@ pub fn sections() -> Vec<Box<dyn Section>> {
         Box::new(nafems_punch::NafemsPunchSection),
         Box::new(nafems_punch::NafemsPunchModifiedSection),
         Box::new(sphere_block::SphereBlockSection),
+        Box::new(concentric_spheres::ConcentricSpheresSection),
         // one line per benchmark section
     ]
 }

@@ -59,17 +59,9 @@ fn report(label: &str, r: &Spheres, curves: &[ReferenceCurve]) {
             .collect();
         eprintln!("  u = {u:.1} mm: F = {:.3} N; {}", f, parts.join(", "));
     }
-    if let Some(u) = buckling(r) {
+    if let Some(u) = r.buckling() {
         eprintln!("  force first falls at u = {u:.1} mm (buckling of the inner sphere)");
     }
-}
-
-/// Plate displacement of the last increment before the force first falls.
-fn buckling(r: &Spheres) -> Option<f64> {
-    r.force
-        .windows(2)
-        .position(|w| w[1] < w[0])
-        .map(|i| r.displacement[i])
 }
 
 /// Largest |F/F_mean − 1| against the frictionless Abaqus/FEBio mean of
@@ -79,17 +71,6 @@ fn worst_frictionless(r: &Spheres, from: f64, to: f64) -> f64 {
         .iter()
         .filter(|(u, _)| *u >= from - 1e-9 && *u <= to + 1e-9)
         .map(|&(u, f)| (r.force_at(u) / f - 1.0).abs())
-        .fold(0.0, f64::max)
-}
-
-/// Largest |F/F_mean − 1| against the Abaqus/FEBio mean of `curves` at
-/// every increment with `from ≤ u ≤ to`.
-fn worst_against(r: &Spheres, curves: &[ReferenceCurve], from: f64, to: f64) -> f64 {
-    r.displacement
-        .iter()
-        .zip(&r.force)
-        .filter(|(u, _)| **u >= from - 1e-9 && **u <= to + 1e-9)
-        .map(|(&u, &f)| (f / abaqus_febio_mean(curves, u) - 1.0).abs())
         .fold(0.0, f64::max)
 }
 
@@ -195,7 +176,7 @@ fn full_travel(label: &str, opts: &Options) {
     let r = run_or_panic(opts);
     let c = curves(frictional);
     report(label, &r, &c);
-    let worst = worst_against(&r, &c, 1.5, r.reached().min(4.5));
+    let worst = r.worst_against(&c, 1.5, r.reached().min(4.5));
     eprintln!(
         "  largest deviation from the Abaqus/FEBio mean over 1.5–4.5 mm: {:.1} %",
         100.0 * worst

@@ -672,7 +672,8 @@ impl ContactSet {
             let start = std::time::Instant::now();
             ci.coupling
                 .set_tangential_factor(ci.tangential_relaxation * damping);
-            if ci.implicit && !bodies[ci.master.body].rigid && !bodies[ci.slave.body].rigid {
+            let deformable_pair = !bodies[ci.master.body].rigid && !bodies[ci.slave.body].rigid;
+            if ci.implicit && deformable_pair {
                 // implicit coupling of two deformable bodies: the linearised
                 // springs carry the convergence and the relaxation of t* only
                 // damps; a cycle of faces that open and close (coincident
@@ -735,7 +736,6 @@ impl ContactSet {
             }
             let eps = ci.law.normal_penalty;
             let (eps_t, friction) = (ci.law.tangential_penalty, ci.law.friction);
-            let deformable_pair = !bodies[ci.master.body].rigid && !bodies[ci.slave.body].rigid;
             if ci.implicit {
                 for (side, fraction) in [
                     (&mut ci.master, &ci.tractions.master),

@@ -187,11 +187,14 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
         }
         let t = case.time.time_at(k);
         // the increment, in sub-steps when an attempt fails (cut-back)
-        let mut total = IncrementInfo::default();
+        // converged while every sub-step is
+        let mut total = IncrementInfo {
+            converged: true,
+            ..Default::default()
+        };
         let mut t0 = t_prev;
         let mut h = t - t_prev;
         let mut cuts = 0;
-        let mut total_converged = true;
         let result = loop {
             let t1 = if t0 + h >= t - 1e-9 * (t - t_prev) {
                 t
@@ -266,7 +269,7 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
                     total.outer_iterations += info.outer_iterations;
                     total.linear_iterations += info.linear_iterations;
                     total.residual = info.residual;
-                    total.converged = total_converged && info.converged;
+                    total.converged &= info.converged;
                     let go_on = info.converged
                         || case.solver.on_nonconvergence == OnNonConvergence::Continue;
                     if t1 == t || !go_on {
@@ -281,7 +284,6 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
                             "increment {k}: sub-step t = {t0:.6e} → {t1:.6e} did not converge in {} outer iterations (residual {:.3e}); continuing",
                             info.outer_iterations, info.residual
                         ));
-                        total_converged = false;
                     }
                     // a sub-step: accept it and go on
                     if let Err(e) = accept_increment(

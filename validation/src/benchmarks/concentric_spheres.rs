@@ -59,6 +59,11 @@ impl Mesh {
 /// Acceptance of the benchmark: within 5 % of Abaqus/FEBio before buckling.
 pub const TOLERANCE: f64 = 0.05;
 
+/// The u_z range (mm) where [`TOLERANCE`] is checked: below 1.5 mm the
+/// digitised curves differ by 10–30 % among themselves; Abaqus and FEBio
+/// buckle at 5.5–5.8 mm.
+pub const CHECKED_RANGE: (f64, f64) = (1.5, 4.5);
+
 /// How to run the case.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Options {
@@ -133,6 +138,12 @@ impl Spheres {
             .filter(|(u, _)| **u >= from - 1e-9 && **u <= to + 1e-9)
             .map(|(&u, &f)| (f / abaqus_febio_mean(curves, u) - 1.0).abs())
             .fold(0.0, f64::max)
+    }
+
+    /// The benchmark's acceptance figure: [`Self::worst_against`] over
+    /// [`CHECKED_RANGE`] (up to where the run reached).
+    pub fn acceptance_deviation(&self, curves: &[ReferenceCurve]) -> f64 {
+        self.worst_against(curves, CHECKED_RANGE.0, self.reached().min(CHECKED_RANGE.1))
     }
 
     /// Plate displacement of the last increment before the force first

@@ -176,7 +176,7 @@ fn full_travel(label: &str, opts: &Options) {
     let r = run_or_panic(opts);
     let c = curves(frictional);
     report(label, &r, &c);
-    let worst = r.worst_against(&c, 1.5, r.reached().min(4.5));
+    let worst = r.acceptance_deviation(&c);
     eprintln!(
         "  largest deviation from the Abaqus/FEBio mean over 1.5–4.5 mm: {:.1} %",
         100.0 * worst

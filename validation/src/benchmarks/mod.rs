@@ -5,6 +5,7 @@ pub mod block_in_half_tube;
 pub mod concentric_cylinders;
 pub mod concentric_spheres;
 pub mod coupling_efficiency;
+pub mod curved_beams;
 pub mod die_drawing;
 pub mod flat_punch;
 pub mod hertz_cylinder;

@@ -16,6 +16,11 @@ pub const MU_G_THESIS: f64 = 0.32;
 pub const MU_G_BAND: (f64, f64) = (0.30, 0.36);
 /// Largest oscillation of H while sliding, relative to its mean (benchmark table).
 pub const OSCILLATION_LIMIT: f64 = 0.01;
+/// Interval of the slide (time) over which the oscillation of H is measured.
+pub const OSCILLATION_INTERVAL: (f64, f64) = (1.2, 1.9);
+/// Half width of the moving average for the oscillation of H: 12
+/// increments each side, 0.5 mm of slide, five foundation faces.
+pub const OSCILLATION_HALF_WINDOW: usize = 12;
 /// The contact surfaces as shipped: foundation top master, block arc slave.
 pub const MASTER: &str = "foundation/ymax";
 /// The slave surface as shipped.

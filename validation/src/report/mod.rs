@@ -8,10 +8,12 @@
 //! [`sections`].
 pub mod concentric_cylinders;
 pub mod concentric_spheres;
+pub mod curved_beams;
 pub mod flat_punch;
 pub mod hertz_cylinder;
 pub mod nafems_punch;
 pub mod plot;
+pub mod shallow_ironing;
 pub mod sphere_block;
 
 use std::fmt::Write as _;
@@ -29,6 +31,8 @@ pub fn sections() -> Vec<Box<dyn Section>> {
         Box::new(nafems_punch::NafemsPunchModifiedSection),
         Box::new(sphere_block::SphereBlockSection),
         Box::new(concentric_spheres::ConcentricSpheresSection),
+        Box::new(curved_beams::CurvedBeamsSection),
+        Box::new(shallow_ironing::ShallowIroningSection),
         // one line per benchmark section
     ]
 }

@@ -8,7 +8,8 @@
 //! shipped (100 increments, ~45 s) and checks the vertical force at
 //! t = 1 against the published curves.
 use validation::benchmarks::shallow_ironing::{
-    reference_curves, run, Options, MU_G_BAND, OSCILLATION_LIMIT,
+    reference_curves, run, Options, MU_G_BAND, OSCILLATION_HALF_WINDOW, OSCILLATION_INTERVAL,
+    OSCILLATION_LIMIT,
 };
 use validation::shared_dir;
 
@@ -17,10 +18,6 @@ use validation::shared_dir;
 const V_ASTER_T1: f64 = 330.8;
 /// The same of Hartmann–Oliver (`hartmannOliverVertical.dat`), N/mm.
 const V_HARTMANN_T1: f64 = 318.8;
-
-/// Half width of the moving average for the oscillation of H: 12
-/// increments each side, 0.5 mm of slide, five foundation faces.
-const HALF_WINDOW: usize = 12;
 
 /// Indentation as shipped: V(t = 1) = 321.5 N/mm, −2.8 % against
 /// Code_Aster and +0.8 % against Hartmann–Oliver (Fischer–Wriggers 297,
@@ -66,7 +63,11 @@ fn full_slide_global_friction_and_smoothness() {
     let r = run(&Options::default());
     assert!(r.converged, "{:?}", r.failure);
     let mu_g = r.mu_g(1.5);
-    let osc = r.oscillation(1.2, 1.9, HALF_WINDOW);
+    let osc = r.oscillation(
+        OSCILLATION_INTERVAL.0,
+        OSCILLATION_INTERVAL.1,
+        OSCILLATION_HALF_WINDOW,
+    );
     let (h1, v1) = r.forces_at(1.0);
     let (h15, v15) = r.forces_at(1.5);
     eprintln!(
@@ -122,7 +123,11 @@ fn full_slide_block_master() {
     });
     assert!(r.converged, "{:?}", r.failure);
     let mu_g = r.mu_g(1.5);
-    let osc = r.oscillation(1.2, 1.9, HALF_WINDOW);
+    let osc = r.oscillation(
+        OSCILLATION_INTERVAL.0,
+        OSCILLATION_INTERVAL.1,
+        OSCILLATION_HALF_WINDOW,
+    );
     eprintln!(
         "shallow ironing, block master: μ_g(1.5) = {mu_g:.4}, oscillation {:.3} %, {:.0} s",
         100.0 * osc,

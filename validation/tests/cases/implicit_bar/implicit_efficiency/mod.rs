@@ -97,7 +97,14 @@
 //! | both                                                     | 174   | 435    | —    |
 //! | both, β never fades within an increment                  | 182   | 255    | —    |
 //! | opposite face (not cell) displacement in eq. 4.69, no c_h | —    | —      | —    |
+//! | t* relaxed towards the carried traction t_c: t_c + (t* − t_c)/(1 + ε_n β c_h) | 224 | — | — |
 //!
+//! The last row keeps c_h but starts the series model from the traction
+//! the half cells carry (t_c = eq. 4.52 at the current u_b, a proxy for
+//! the opposite half cell's load): the first iterates at 33.5 then land
+//! right (35 → 15.7 → 0.33 N), but once the faces open the inner tube,
+//! under 10 Pa with ~0.05 m of free hoop expansion, crosses 1.7e-2 m in one
+//! step; at 3.35 it locks into a period-2 cycle (force 5.6 ↔ 0.5 N).
 //! Without c_h the first step lands right (gap −1.8e-4 → −8e-5) but the
 //! iterates then alternate open/closed with growing amplitude (×4 per
 //! cycle). The dominant splitting removes the zig-zag of the face gaps

@@ -10,8 +10,8 @@
 //! other full slides take about a minute each and are `--ignored`. The
 //! case sets Rhie–Chow 1 (its comment gives the peaks with the thesis's
 //! 0.1, 1–3 % lower).
-use validation::benchmarks::{read_case, swap_master_slave};
-use validation::{run_toml_with_history, HistoryTable};
+use validation::benchmarks::curved_beams::{case_text, run, run_text};
+use validation::benchmarks::read_case;
 
 /// Peaks of the reaction on the upper beam's driven ends.
 struct Peaks {
@@ -24,20 +24,11 @@ struct Peaks {
 /// Runs the shipped case with friction `mu` up to `until` mm of slide
 /// (0.5 mm per increment, as shipped), the upper beam master if `swap`.
 fn reaction_peaks(mu: f64, until: f64, swap: bool) -> Peaks {
-    let (_, text) = read_case("curved-beams", "case.toml");
-    let steps = (until / 0.5).round() as usize;
-    let mut text = text
-        .replace("friction = 0.3", &format!("friction = {mu:.1}"))
-        .replace("end = 31.5", &format!("end = {until}"))
-        .replace("steps = 63", &format!("steps = {steps}"));
-    if swap {
-        text = swap_master_slave(&text, "lower/outer", "upper/outer");
-    }
-    let (out, history) = run_toml_with_history(&text);
-    assert!(out.converged, "μ = {mu}: {:?}", out.failure);
+    let r = run(mu, until, swap);
+    assert!(r.converged(), "μ = {mu}: {:?}", r.failure);
     let p = Peaks {
-        fx: driven_end_peak(&history, "Fx"),
-        fy: driven_end_peak(&history, "Fy"),
+        fx: r.fx_peak(),
+        fy: r.fy_peak(),
     };
     eprintln!(
         "curved beams μ = {mu}{}: peak |Fx| {:.3} N at {:.1} mm, |Fy| {:.3} N at {:.1} mm; {} outer iterations ({:.0} per increment), {:.0} s",
@@ -46,24 +37,11 @@ fn reaction_peaks(mu: f64, until: f64, swap: bool) -> Peaks {
         p.fx.1,
         p.fy.0,
         p.fy.1,
-        out.summary.outer_iterations,
-        out.summary.outer_iterations as f64 / steps as f64,
-        out.summary.wall_seconds
+        r.cost.outer_iterations,
+        r.cost.outer_iterations as f64 / r.cost.increments.max(1) as f64,
+        r.cost.wall_seconds
     );
     p
-}
-
-/// Largest |F| of `component` of the reaction on the upper beam's two
-/// driven ends, and the slide (mm, the time) where it occurs.
-fn driven_end_peak(history: &HistoryTable, component: &str) -> (f64, f64) {
-    let t = history.column("time");
-    let a = history.column(&format!("upper/start:{component}"));
-    let b = history.column(&format!("upper/end:{component}"));
-    a.iter()
-        .zip(&b)
-        .map(|(a, b)| (a + b).abs())
-        .zip(&t)
-        .fold((0.0, 0.0), |m, (f, &t)| if f > m.0 { (f, t) } else { m })
 }
 
 fn assert_within(what: &str, measured: f64, reference: f64, limit: f64) {
@@ -139,23 +117,22 @@ fn high_friction_full_slide_against_neto() {
 fn implicit_coupling_average_penetration_under_one_percent() {
     const E: f64 = 689.56;
     const PENALTY_SCALE: f64 = 4.0;
-    let (_, text) = read_case("curved-beams", "case.toml");
+    let (_, shipped) = read_case("curved-beams", "case.toml");
     // the shipped case leaves the penalty at its default (scale 1)
-    assert!(!text
+    assert!(!shipped
         .lines()
         .any(|l| l.trim_start().starts_with("penalty_scale")));
-    let text = text.replace(
+    assert!(shipped.contains("coupling = \"implicit\""));
+    let text = case_text(0.3, 31.5, false).replace(
         "friction = 0.3",
         &format!("friction = 0.3\npenalty_scale = {PENALTY_SCALE:.1}"),
     );
-    assert!(text.contains("coupling = \"implicit\""));
-    let (out, history) = run_toml_with_history(&text);
-    assert!(out.converged, "{:?}", out.failure);
-    let force = history.column("upper/outer:normal_force");
-    let area = history.column("upper/outer:contact_area");
-    let relative: Vec<f64> = force
+    let r = run_text(&text);
+    assert!(r.converged(), "{:?}", r.failure);
+    let relative: Vec<f64> = r
+        .normal_force
         .iter()
-        .zip(&area)
+        .zip(&r.contact_area)
         .filter(|(_, &a)| a > 0.0)
         .map(|(f, a)| f / a / (PENALTY_SCALE * E))
         .collect();
@@ -166,17 +143,13 @@ fn implicit_coupling_average_penetration_under_one_percent() {
     );
     let mean = relative.iter().sum::<f64>() / relative.len() as f64;
     let largest = relative.iter().fold(0.0f64, |m, &r| m.max(r));
-    let t = history.column("time");
-    let (fx, fy) = (
-        driven_end_peak(&history, "Fx").0,
-        driven_end_peak(&history, "Fy").0,
-    );
+    let (fx, fy) = (r.fx_peak().0, r.fy_peak().0);
     eprintln!(
         "curved beams μ = 0.3, implicit, penalty_scale {PENALTY_SCALE}: average relative penetration {:.2} % (largest {:.2} %), |Fx| {fx:.3}, |Fy| {fy:.3} N, {:.0} outer iterations per increment, {:.0} s",
         100.0 * mean,
         100.0 * largest,
-        out.summary.outer_iterations as f64 / t.len() as f64,
-        out.summary.wall_seconds
+        r.cost.outer_iterations as f64 / r.slide.len() as f64,
+        r.cost.wall_seconds
     );
     assert!(mean < 0.01, "average relative penetration {mean}");
     assert_within("μ = 0.3 Fx", fx, 17.3, 0.03);
@@ -191,17 +164,12 @@ fn implicit_coupling_average_penetration_under_one_percent() {
 /// started from them.
 #[test]
 fn cut_back_recovers_from_a_diverged_increment() {
-    let (_, text) = read_case("curved-beams", "case.toml");
-    let text = text
-        .replace("friction = 0.3", "friction = 0.6")
-        .replace("cells = [5, 50, 1]", "cells = [5, 100, 1]")
-        .replace("end = 31.5", "end = 0.5")
-        .replace("steps = 63", "steps = 1");
-    let (out, history) = run_toml_with_history(&text);
-    assert!(out.converged, "{:?}", out.failure);
+    let text = case_text(0.6, 0.5, false).replace("cells = [5, 50, 1]", "cells = [5, 100, 1]");
+    let r = run_text(&text);
+    assert!(r.converged(), "{:?}", r.failure);
     // the reaction of the first 0.5 mm (5 × 50 mesh: Fx 2.09 N, Fy 0.82 N;
     // Neto et al. about 1.9 and 0.7)
-    let fx = history.column("upper/start:Fx")[0] + history.column("upper/end:Fx")[0];
+    let fx = r.fx[0];
     eprintln!("curved beams 5 × 100, first increment: Fx {fx:.3} N");
     assert!((1.7..2.4).contains(&fx.abs()), "{fx}");
 }

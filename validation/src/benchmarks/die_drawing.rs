@@ -14,6 +14,16 @@ pub const R2: f64 = 0.015;
 /// Young's modulus, Pa.
 pub const YOUNG: f64 = 1.0e6;
 
+/// Pull distance of the case, m.
+pub const FULL_PULL: f64 = 0.25;
+
+/// Pull distances (m) over which the force is taken as steady: the front
+/// of the straight part of the cylinder (y = 0.08 m in the mesh) passes
+/// the die exit at about 0.175 m, before that the force still rises with
+/// the pre-shaped front being drawn; increment 73 (0.1825 m) stops
+/// converging.
+pub const STEADY: (f64, f64) = (0.17, 0.18);
+
 /// Steady drawing force of an incompressible neo-Hookean cylinder through
 /// a frictionless die, thesis eq. 5.1 (Sussman & Bathe 1987):
 /// F = (π/6) E r2² [2 (r2/r1)² + (r1/r2)⁴ − 3], N (640.4 N here). It is

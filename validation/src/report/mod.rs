@@ -9,12 +9,14 @@
 pub mod concentric_cylinders;
 pub mod concentric_spheres;
 pub mod curved_beams;
+pub mod die_drawing;
 pub mod flat_punch;
 pub mod hertz_cylinder;
 pub mod nafems_punch;
 pub mod plot;
 pub mod shallow_ironing;
 pub mod sphere_block;
+pub mod twisting_hemisphere;
 
 use std::fmt::Write as _;
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -30,9 +32,12 @@ pub fn sections() -> Vec<Box<dyn Section>> {
         Box::new(nafems_punch::NafemsPunchSection),
         Box::new(nafems_punch::NafemsPunchModifiedSection),
         Box::new(sphere_block::SphereBlockSection),
-        Box::new(concentric_spheres::ConcentricSpheresSection),
-        Box::new(curved_beams::CurvedBeamsSection),
+        // large deformation, in the thesis's order (§5.3.1–5.3.5)
+        Box::new(die_drawing::DieDrawingSection),
         Box::new(shallow_ironing::ShallowIroningSection),
+        Box::new(curved_beams::CurvedBeamsSection),
+        Box::new(concentric_spheres::ConcentricSpheresSection),
+        Box::new(twisting_hemisphere::TwistingHemisphereSection),
         // one line per benchmark section
     ]
 }

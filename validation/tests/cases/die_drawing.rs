@@ -1,14 +1,7 @@
 //! Cylinder drawn through a rigid die (thesis §5.3.1, eq. 5.1): the
 //! pulling force against the steady drawing force of an incompressible
 //! neo-Hookean cylinder, 640.4 N; large strain in a one-cell wedge.
-use validation::benchmarks::die_drawing::{analytical_force, run, DieRun};
-
-/// Pull distances (m) over which the force is taken as steady: the front
-/// of the straight part of the cylinder (y = 0.08 m in the mesh) passes
-/// the die exit at about 0.175 m, before that the force still rises with
-/// the pre-shaped front being drawn; increment 73 (0.1825 m) stops
-/// converging.
-const STEADY: (f64, f64) = (0.17, 0.18);
+use validation::benchmarks::die_drawing::{analytical_force, run, DieRun, FULL_PULL, STEADY};
 
 fn report(r: &DieRun) {
     let reference = analytical_force();
@@ -80,7 +73,7 @@ fn die_drawing_force_levels_off_within_three_percent_of_eq_5_1() {
 #[ignore = "the run stops converging at 0.1825 m (README.md); ~1 min per side"]
 fn die_drawing_full_pull_either_side_master() {
     for swapped in [false, true] {
-        let r = run("case.toml", 0.25, swapped);
+        let r = run("case.toml", FULL_PULL, swapped);
         report(&r);
         assert!(r.converged, "{:?}", r.failure);
         let Some((mean, _)) = r.mean_force(0.18, 0.25) else {

@@ -159,10 +159,14 @@ impl Section for TwistingHemisphereSection {
                 .sum::<f64>()
                 / (n + 1) as f64;
             let torque_error = plateau / plateau_ref - 1.0;
-            if !(force_error.abs() < FORCE_TOLERANCE) {
+            // (NaN where the run stopped before the angle: reported above)
+            if missed.is_empty() && !(force_error.is_finite() && torque_error.is_finite()) {
+                missed.push("F_z or torque not finite".into());
+            }
+            if force_error.abs() >= FORCE_TOLERANCE {
                 missed.push(format!("F_z {:+.1} %", 100.0 * force_error));
             }
-            if !(torque_error.abs() < TORQUE_TOLERANCE) {
+            if torque_error.abs() >= TORQUE_TOLERANCE {
                 missed.push(format!("torque {:+.1} %", 100.0 * torque_error));
             }
             pass &= missed.is_empty();

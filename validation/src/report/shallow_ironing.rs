@@ -6,7 +6,7 @@
 //! 0.36] and H free of oscillation above 1 % while sliding.
 use std::path::Path;
 
-use super::plot::{render_png, Plot, Style, BLACK_C, BLUE_C, GREEN_C, ORANGE_C, RED_C};
+use super::plot::{render_png, Legend, Plot, Style, BLACK_C, BLUE_C, GREEN_C, ORANGE_C, RED_C};
 use super::{guarded, table, ReportError, Section, SectionReport, Status};
 use crate::benchmarks::shallow_ironing::{
     reference_curves, run, Ironing, Options, ReferenceCurve, MU_G_BAND, OSCILLATION_HALF_WINDOW,
@@ -56,6 +56,13 @@ fn force_plot(
         &format!("{symbol} (N/mm)"),
     );
     plot.x_range = Some((0.0, 2.0));
+    // room above the curves for the legend, top left, where they are low
+    plot.y_range = Some(if horizontal {
+        (-5.0, 260.0)
+    } else {
+        (0.0, 600.0)
+    });
+    plot.legend = Legend::UpperLeft;
     let colours = [BLACK_C, GREEN_C, ORANGE_C, (148, 103, 189), (140, 86, 75)];
     for (c, colour) in curves.iter().zip(colours) {
         let points = if horizontal {

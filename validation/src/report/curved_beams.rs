@@ -24,6 +24,9 @@ const RUNS: [(f64, bool); 5] = [
     (0.6, false),
 ];
 
+/// One run: (μ, upper beam master) and its result.
+type Run = ((f64, bool), Result<CurvedBeams, String>);
+
 fn label(mu: f64, upper_master: bool) -> String {
     format!(
         "μ = {mu:.1}, {} beam master",
@@ -32,11 +35,7 @@ fn label(mu: f64, upper_master: bool) -> String {
 }
 
 /// |F_component| against the slide: Neto et al. and every run.
-fn force_plot(
-    component: &str,
-    neto: &[(f64, Vec<(f64, f64)>)],
-    runs: &[((f64, bool), Result<CurvedBeams, String>)],
-) -> Plot {
+fn force_plot(component: &str, neto: &[(f64, Vec<(f64, f64)>)], runs: &[Run]) -> Plot {
     let mut plot = Plot::new(
         &format!("curved-beams: |F{component}| on the upper beam's driven ends"),
         "slide (mm)",

@@ -7,12 +7,14 @@
 use std::path::Path;
 
 use super::plot::{render_png, Plot, Style, BLACK_C, BLUE_C, GREEN_C, ORANGE_C, RED_C};
-use super::{guarded, table, ReportError, Section, SectionReport, Status};
+use super::{
+    not_run_row, run_variant, shared_references, table, verdict, ReportError, Section,
+    SectionReport, Status,
+};
 use crate::benchmarks::concentric_spheres::{
     abaqus_febio_mean, reference_curves, run, Mesh, Options, ReferenceCurve, Spheres,
     CHECKED_RANGE, TOLERANCE,
 };
-use crate::shared_dir;
 
 /// The concentric-spheres section.
 pub struct ConcentricSpheresSection;
@@ -115,9 +117,7 @@ impl Section for ConcentricSpheresSection {
     }
 
     fn run(&self, out: &Path, log: &mut dyn FnMut(&str)) -> Result<SectionReport, ReportError> {
-        let shared = shared_dir().ok_or_else(|| {
-            ReportError::Benchmark("../shared is absent (the reference curves live there)".into())
-        })?;
+        let shared = shared_references()?;
         let curves = [false, true].map(|frictional| reference_curves(&shared, frictional));
         let curves = match curves {
             [Ok(a), Ok(b)] => [a, b],
@@ -126,11 +126,7 @@ impl Section for ConcentricSpheresSection {
         let variants = variants();
         let mut runs = Vec::new();
         for v in &variants {
-            log(&format!("concentric-spheres: {}", v.label));
-            let result = guarded(|| run(&v.opts, Some(&shared))).and_then(|r| r);
-            if let Err(e) = &result {
-                log(&format!("concentric-spheres: {}: {e}", v.label));
-            }
+            let result = run_variant(self.name(), v.label, log, || run(&v.opts, Some(&shared)));
             runs.push((v, result));
         }
 
@@ -142,11 +138,7 @@ impl Section for ConcentricSpheresSection {
                 Ok(r) => r,
                 Err(e) => {
                     pass = false;
-                    let mut row = vec![v.label.to_string()];
-                    row.push(format!("did not run: {}", e.replace('|', "/")));
-                    row.extend(std::iter::repeat_n(String::new(), 8));
-                    row.push("**FAIL**".to_string());
-                    rows.push(row);
+                    rows.push(not_run_row(v.label, e, 8));
                     summary.push(format!("{}: did not run: {e}", v.label));
                     continue;
                 }
@@ -162,11 +154,7 @@ impl Section for ConcentricSpheresSection {
                 missed.push(format!("{:.1} % off", 100.0 * worst));
             }
             pass &= missed.is_empty();
-            let verdict = if missed.is_empty() {
-                "PASS".to_string()
-            } else {
-                format!("**FAIL** ({})", missed.join(", "))
-            };
+            let verdict = verdict(&missed);
             let at = |u: f64| {
                 let f = r.force_at(u);
                 format!(

@@ -6,11 +6,13 @@
 use std::path::Path;
 
 use super::plot::{render_png, Legend, Plot, Style, BLACK_C, BLUE_C, GREEN_C, ORANGE_C, RED_C};
-use super::{guarded, table, ReportError, Section, SectionReport, Status};
+use super::{
+    not_run_row, run_variant, shared_references, table, verdict, ReportError, Section,
+    SectionReport, Status,
+};
 use crate::benchmarks::curved_beams::{
     neto_peaks, reference_curve, run, CurvedBeams, FULL_SLIDE, TOLERANCE,
 };
-use crate::shared_dir;
 
 /// The curved-beams section.
 pub struct CurvedBeamsSection;
@@ -84,9 +86,7 @@ impl Section for CurvedBeamsSection {
     }
 
     fn run(&self, out: &Path, log: &mut dyn FnMut(&str)) -> Result<SectionReport, ReportError> {
-        let shared = shared_dir().ok_or_else(|| {
-            ReportError::Benchmark("../shared is absent (the reference curves live there)".into())
-        })?;
+        let shared = shared_references()?;
         let mut neto = [Vec::new(), Vec::new()];
         for (component, curves) in ["x", "y"].into_iter().zip(&mut neto) {
             for (mu, _, _) in crate::benchmarks::curved_beams::NETO_PEAKS {
@@ -96,11 +96,9 @@ impl Section for CurvedBeamsSection {
         }
         let mut runs = Vec::new();
         for (mu, upper) in RUNS {
-            log(&format!("curved-beams: {}", label(mu, upper)));
-            let result = guarded(|| run(mu, FULL_SLIDE, upper));
-            if let Err(e) = &result {
-                log(&format!("curved-beams: {}: {e}", label(mu, upper)));
-            }
+            let result = run_variant(self.name(), &label(mu, upper), log, || {
+                Ok(run(mu, FULL_SLIDE, upper))
+            });
             runs.push(((mu, upper), result));
         }
 
@@ -113,13 +111,7 @@ impl Section for CurvedBeamsSection {
                 Ok(r) => r,
                 Err(e) => {
                     pass = false;
-                    let mut row = vec![
-                        name.clone(),
-                        format!("did not run: {}", e.replace('|', "/")),
-                    ];
-                    row.extend(std::iter::repeat_n(String::new(), 5));
-                    row.push("**FAIL**".to_string());
-                    rows.push(row);
+                    rows.push(not_run_row(&name, e, 5));
                     summary.push(format!("{name}: did not run: {e}"));
                     continue;
                 }
@@ -140,11 +132,7 @@ impl Section for CurvedBeamsSection {
                 missed.push(format!("Fy {:+.1} %", 100.0 * dy));
             }
             pass &= missed.is_empty();
-            let verdict = if missed.is_empty() {
-                "PASS".to_string()
-            } else {
-                format!("**FAIL** ({})", missed.join(", ").replace('|', "/"))
-            };
+            let verdict = verdict(&missed);
             let per_increment = r.cost.outer_iterations as f64 / r.cost.increments.max(1) as f64;
             rows.push(vec![
                 name.clone(),

@@ -6,7 +6,9 @@
 use std::path::Path;
 
 use super::plot::{render_png, Legend, Plot, Style, BLACK_C, BLUE_C, RED_C};
-use super::{guarded, table, ReportError, Section, SectionReport, Status};
+use super::{
+    not_run_row, run_variant, table, verdict, ReportError, Section, SectionReport, Status,
+};
 use crate::benchmarks::die_drawing::{analytical_force, run, DieRun, FULL_PULL, STEADY};
 
 /// The die-drawing section.
@@ -63,11 +65,9 @@ impl Section for DieDrawingSection {
         let reference = analytical_force();
         let mut runs = Vec::new();
         for swapped in [false, true] {
-            log(&format!("die-drawing: {}", label(swapped)));
-            let result = guarded(|| run("case.toml", FULL_PULL, swapped));
-            if let Err(e) = &result {
-                log(&format!("die-drawing: {}: {e}", label(swapped)));
-            }
+            let result = run_variant(self.name(), label(swapped), log, || {
+                Ok(run("case.toml", FULL_PULL, swapped))
+            });
             runs.push((swapped, result));
         }
 
@@ -80,13 +80,7 @@ impl Section for DieDrawingSection {
                 Ok(r) => r,
                 Err(e) => {
                     pass = false;
-                    let mut row = vec![
-                        name.to_string(),
-                        format!("did not run: {}", e.replace('|', "/")),
-                    ];
-                    row.extend(std::iter::repeat_n(String::new(), 4));
-                    row.push("**FAIL**".to_string());
-                    rows.push(row);
+                    rows.push(not_run_row(name, e, 4));
                     summary.push(format!("{name}: did not run: {e}"));
                     continue;
                 }
@@ -114,11 +108,7 @@ impl Section for DieDrawingSection {
                 }
             };
             pass &= missed.is_empty();
-            let verdict = if missed.is_empty() {
-                "PASS".to_string()
-            } else {
-                format!("**FAIL** ({})", missed.join(", "))
-            };
+            let verdict = verdict(&missed);
             let per_increment = r.cost.outer_iterations as f64 / r.cost.increments.max(1) as f64;
             rows.push(vec![
                 name.to_string(),

@@ -168,6 +168,50 @@ impl Written {
     }
 }
 
+/// `../shared` for a section that reads its reference curves from there.
+pub fn shared_references() -> Result<PathBuf, ReportError> {
+    crate::shared_dir().ok_or_else(|| {
+        ReportError::Benchmark("../shared is absent (the reference curves live there)".into())
+    })
+}
+
+/// Runs one variant of section `section` under [`guarded`], logging its
+/// start and, if it did not run, why.
+pub fn run_variant<T>(
+    section: &str,
+    label: &str,
+    log: &mut dyn FnMut(&str),
+    f: impl FnOnce() -> Result<T, String>,
+) -> Result<T, String> {
+    log(&format!("{section}: {label}"));
+    let result = guarded(f).and_then(|r| r);
+    if let Err(e) = &result {
+        log(&format!("{section}: {label}: {e}"));
+    }
+    result
+}
+
+/// The table row of a run that did not run: its label, the message,
+/// `blank` empty cells and FAIL.
+pub fn not_run_row(label: &str, error: &str, blank: usize) -> Vec<String> {
+    let mut row = vec![
+        label.to_string(),
+        format!("did not run: {}", error.replace('|', "/")),
+    ];
+    row.extend(std::iter::repeat_n(String::new(), blank));
+    row.push("**FAIL**".to_string());
+    row
+}
+
+/// PASS, or FAIL with the limits a run missed.
+pub fn verdict(missed: &[String]) -> String {
+    if missed.is_empty() {
+        "PASS".to_string()
+    } else {
+        format!("**FAIL** ({})", missed.join(", ").replace('|', "/"))
+    }
+}
+
 /// Runs `f`, turning a panic into `Err` with its message.
 pub fn guarded<T>(f: impl FnOnce() -> T) -> Result<T, String> {
     catch_unwind(AssertUnwindSafe(f)).map_err(|payload| {
@@ -402,6 +446,20 @@ mod tests {
         }
         let only_ok = write_sections(&all[..1], &out, &mut |_| {}).expect("written");
         assert!(only_ok.all_passed());
+    }
+
+    #[test]
+    fn verdict_lists_the_missed_limits() {
+        assert_eq!(verdict(&[]), "PASS");
+        assert_eq!(
+            verdict(&["Fx +4.0 %".into(), "a|b".into()]),
+            "**FAIL** (Fx +4.0 %, a/b)"
+        );
+        let row = not_run_row("μ = 0", "no | column", 2);
+        assert_eq!(
+            row,
+            ["μ = 0", "did not run: no / column", "", "", "**FAIL**"]
+        );
     }
 
     #[test]

@@ -7,12 +7,14 @@
 use std::path::Path;
 
 use super::plot::{render_png, Legend, Plot, Style, BLACK_C, BLUE_C, GREEN_C, ORANGE_C, RED_C};
-use super::{guarded, table, ReportError, Section, SectionReport, Status};
+use super::{
+    not_run_row, run_variant, shared_references, table, verdict, ReportError, Section,
+    SectionReport, Status,
+};
 use crate::benchmarks::shallow_ironing::{
     reference_curves, run, Ironing, Options, ReferenceCurve, MU_G_BAND, OSCILLATION_HALF_WINDOW,
     OSCILLATION_INTERVAL, OSCILLATION_LIMIT,
 };
-use crate::shared_dir;
 
 /// The shallow-ironing section.
 pub struct ShallowIroningSection;
@@ -96,18 +98,13 @@ impl Section for ShallowIroningSection {
     }
 
     fn run(&self, out: &Path, log: &mut dyn FnMut(&str)) -> Result<SectionReport, ReportError> {
-        let shared = shared_dir().ok_or_else(|| {
-            ReportError::Benchmark("../shared is absent (the reference curves live there)".into())
-        })?;
+        let shared = shared_references()?;
         let curves = reference_curves(&shared).map_err(ReportError::Benchmark)?;
         let variants = variants();
         let mut runs = Vec::new();
         for v in &variants {
-            log(&format!("shallow-ironing: {} (about 6–8 min)", v.label));
-            let result = guarded(|| run(&v.opts));
-            if let Err(e) = &result {
-                log(&format!("shallow-ironing: {}: {e}", v.label));
-            }
+            let label = format!("{} (about 6–8 min)", v.label);
+            let result = run_variant(self.name(), &label, log, || Ok(run(&v.opts)));
             runs.push((v, result));
         }
 
@@ -120,11 +117,7 @@ impl Section for ShallowIroningSection {
                 Ok(r) => r,
                 Err(e) => {
                     pass = false;
-                    let mut row = vec![v.label.to_string()];
-                    row.push(format!("did not run: {}", e.replace('|', "/")));
-                    row.extend(std::iter::repeat_n(String::new(), 6));
-                    row.push("**FAIL**".to_string());
-                    rows.push(row);
+                    rows.push(not_run_row(v.label, e, 6));
                     summary.push(format!("{}: did not run: {e}", v.label));
                     continue;
                 }
@@ -144,11 +137,7 @@ impl Section for ShallowIroningSection {
                 missed.push(format!("H oscillates {:.2} %", 100.0 * osc));
             }
             pass &= missed.is_empty();
-            let verdict = if missed.is_empty() {
-                "PASS".to_string()
-            } else {
-                format!("**FAIL** ({})", missed.join(", ").replace('|', "/"))
-            };
+            let verdict = verdict(&missed);
             rows.push(vec![
                 v.label.to_string(),
                 format!("{reached:.3}"),

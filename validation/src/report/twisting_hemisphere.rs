@@ -7,12 +7,14 @@
 use std::path::Path;
 
 use super::plot::{render_png, Legend, Plot, Style, BLACK_C, BLUE_C, GREEN_C, RED_C};
-use super::{guarded, table, ReportError, Section, SectionReport, Status};
+use super::{
+    not_run_row, run_variant, shared_references, table, verdict, ReportError, Section,
+    SectionReport, Status,
+};
 use crate::benchmarks::twisting_hemisphere::{
     angle_of, references, run, Options, ReferenceCurve, References, Twist, FORCE_TOLERANCE,
     TORQUE_TOLERANCE,
 };
-use crate::shared_dir;
 
 /// The twisting-hemisphere section.
 pub struct TwistingHemisphereSection;
@@ -94,21 +96,17 @@ impl Section for TwistingHemisphereSection {
     }
 
     fn run(&self, out: &Path, log: &mut dyn FnMut(&str)) -> Result<SectionReport, ReportError> {
-        let shared = shared_dir().ok_or_else(|| {
-            ReportError::Benchmark("../shared is absent (the reference curves live there)".into())
-        })?;
+        let shared = shared_references()?;
         let refs = references(&shared).map_err(ReportError::Benchmark)?;
         let mut runs = Vec::new();
         for swapped in [false, true] {
-            log(&format!("twisting-hemisphere: {}", label(swapped)));
             let opts = Options {
                 swapped,
                 ..Options::default()
             };
-            let result = guarded(|| run(Some(&shared), &opts)).and_then(|r| r);
-            if let Err(e) = &result {
-                log(&format!("twisting-hemisphere: {}: {e}", label(swapped)));
-            }
+            let result = run_variant(self.name(), label(swapped), log, || {
+                run(Some(&shared), &opts)
+            });
             runs.push((swapped, result));
         }
 
@@ -122,13 +120,7 @@ impl Section for TwistingHemisphereSection {
                 Ok(r) => r,
                 Err(e) => {
                     pass = false;
-                    let mut row = vec![
-                        name.to_string(),
-                        format!("did not run: {}", e.replace('|', "/")),
-                    ];
-                    row.extend(std::iter::repeat_n(String::new(), 6));
-                    row.push("**FAIL**".to_string());
-                    rows.push(row);
+                    rows.push(not_run_row(name, e, 6));
                     summary.push(format!("{name}: did not run: {e}"));
                     continue;
                 }
@@ -170,11 +162,7 @@ impl Section for TwistingHemisphereSection {
                 missed.push(format!("torque {:+.1} %", 100.0 * torque_error));
             }
             pass &= missed.is_empty();
-            let verdict = if missed.is_empty() {
-                "PASS".to_string()
-            } else {
-                format!("**FAIL** ({})", missed.join(", ").replace('|', "/"))
-            };
+            let verdict = verdict(&missed);
             let percent = |e: f64| {
                 if e.is_finite() {
                     format!("{:+.1}", 100.0 * e)

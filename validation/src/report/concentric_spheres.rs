@@ -6,9 +6,9 @@
 //! up to buckling (checked from 1.5 to 4.5 mm).
 use std::path::Path;
 
-use super::plot::{render_png, Plot, Style, BLACK_C, BLUE_C, GREEN_C, ORANGE_C, RED_C};
+use super::plot::{Plot, Style, BLACK_C, BLUE_C, GREEN_C, ORANGE_C, RED_C};
 use super::{
-    not_run_row, run_variant, shared_references, table, verdict, ReportError, Section,
+    not_run_row, run_variant, shared_references, table, verdict, Figures, ReportError, Section,
     SectionReport, Status,
 };
 use crate::benchmarks::concentric_spheres::{
@@ -189,21 +189,23 @@ impl Section for ConcentricSpheresSection {
             ));
         }
 
-        let mut images = Vec::new();
-        let mut figures = String::new();
-        for (frictional, c) in [false, true].into_iter().zip(&curves) {
-            let file = if frictional {
-                "concentric-spheres-friction.png"
-            } else {
-                "concentric-spheres-frictionless.png"
-            };
-            let path = out.join(file);
-            render_png(&force_plot(frictional, c, &runs), &path)?;
-            figures.push_str(&format!(
-                "![force against plate displacement, μ = {}]({file})\n\n",
-                if frictional { "0.5" } else { "0" }
-            ));
-            images.push(path);
+        let mut figures = Figures::default();
+        for ((frictional, file, alt), c) in [
+            (
+                false,
+                "concentric-spheres-frictionless.png",
+                "force against plate displacement, μ = 0",
+            ),
+            (
+                true,
+                "concentric-spheres-friction.png",
+                "force against plate displacement, μ = 0.5",
+            ),
+        ]
+        .into_iter()
+        .zip(&curves)
+        {
+            figures.add(out, file, alt, &force_plot(frictional, c, &runs))?;
         }
 
         let mut md = String::new();
@@ -244,10 +246,10 @@ impl Section for ConcentricSpheresSection {
             CHECKED_RANGE.0,
             CHECKED_RANGE.1
         ));
-        md.push_str(&figures);
+        md.push_str(&figures.markdown);
         Ok(SectionReport {
             markdown: md,
-            images,
+            images: figures.images,
             status: if pass { Status::Pass } else { Status::Fail },
             summary,
         })

@@ -5,9 +5,9 @@
 //! for each μ, the same whichever beam is master.
 use std::path::Path;
 
-use super::plot::{render_png, Legend, Plot, Style, BLACK_C, BLUE_C, GREEN_C, ORANGE_C, RED_C};
+use super::plot::{Legend, Plot, Style, BLACK_C, BLUE_C, GREEN_C, ORANGE_C, RED_C};
 use super::{
-    not_run_row, run_variant, shared_references, table, verdict, ReportError, Section,
+    not_run_row, run_variant, shared_references, table, verdict, Figures, ReportError, Section,
     SectionReport, Status,
 };
 use crate::benchmarks::curved_beams::{
@@ -155,14 +155,14 @@ impl Section for CurvedBeamsSection {
             ));
         }
 
-        let mut images = Vec::new();
-        let mut figures = String::new();
+        let mut figures = Figures::default();
         for (component, curves) in ["x", "y"].into_iter().zip(&neto) {
-            let file = format!("curved-beams-f{component}.png");
-            let path = out.join(&file);
-            render_png(&force_plot(component, curves, &runs), &path)?;
-            figures.push_str(&format!("![|F{component}| against the slide]({file})\n\n"));
-            images.push(path);
+            figures.add(
+                out,
+                &format!("curved-beams-f{component}.png"),
+                &format!("|F{component}| against the slide"),
+                &force_plot(component, curves, &runs),
+            )?;
         }
 
         let mut md = String::new();
@@ -193,10 +193,10 @@ impl Section for CurvedBeamsSection {
              each μ, whichever beam is master. Wall time on this machine.\n\n",
             100.0 * TOLERANCE
         ));
-        md.push_str(&figures);
+        md.push_str(&figures.markdown);
         Ok(SectionReport {
             markdown: md,
-            images,
+            images: figures.images,
             status: if pass { Status::Pass } else { Status::Fail },
             summary,
         })

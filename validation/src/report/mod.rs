@@ -203,6 +203,32 @@ pub fn not_run_row(label: &str, error: &str, blank: usize) -> Vec<String> {
     row
 }
 
+/// The PNG plots of a section and the markdown lines that show them.
+#[derive(Debug, Default)]
+pub struct Figures {
+    /// The files written.
+    pub images: Vec<PathBuf>,
+    /// One image line per plot.
+    pub markdown: String,
+}
+
+impl Figures {
+    /// Renders `plot` into `out/file` and adds it with the caption `alt`.
+    pub fn add(
+        &mut self,
+        out: &Path,
+        file: &str,
+        alt: &str,
+        plot: &plot::Plot,
+    ) -> Result<(), ReportError> {
+        let path = out.join(file);
+        plot::render_png(plot, &path)?;
+        self.markdown.push_str(&format!("![{alt}]({file})\n\n"));
+        self.images.push(path);
+        Ok(())
+    }
+}
+
 /// PASS, or FAIL with the limits a run missed.
 pub fn verdict(missed: &[String]) -> String {
     if missed.is_empty() {

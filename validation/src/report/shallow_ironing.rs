@@ -6,9 +6,9 @@
 //! 0.36] and H free of oscillation above 1 % while sliding.
 use std::path::Path;
 
-use super::plot::{render_png, Legend, Plot, Style, BLACK_C, BLUE_C, GREEN_C, ORANGE_C, RED_C};
+use super::plot::{Legend, Plot, Style, BLACK_C, BLUE_C, GREEN_C, ORANGE_C, RED_C};
 use super::{
-    not_run_row, run_variant, shared_references, table, verdict, ReportError, Section,
+    not_run_row, run_variant, shared_references, table, verdict, Figures, ReportError, Section,
     SectionReport, Status,
 };
 use crate::benchmarks::shallow_ironing::{
@@ -175,21 +175,20 @@ impl Section for ShallowIroningSection {
             ]);
         }
 
-        let mut images = Vec::new();
-        let mut figures = String::new();
-        for horizontal in [true, false] {
-            let file = if horizontal {
-                "shallow-ironing-h.png"
-            } else {
-                "shallow-ironing-v.png"
-            };
-            let path = out.join(file);
-            render_png(&force_plot(horizontal, &curves, &runs), &path)?;
-            figures.push_str(&format!(
-                "![{} reaction against time]({file})\n\n",
-                if horizontal { "horizontal" } else { "vertical" }
-            ));
-            images.push(path);
+        let mut figures = Figures::default();
+        for (horizontal, file, alt) in [
+            (
+                true,
+                "shallow-ironing-h.png",
+                "horizontal reaction against time",
+            ),
+            (
+                false,
+                "shallow-ironing-v.png",
+                "vertical reaction against time",
+            ),
+        ] {
+            figures.add(out, file, alt, &force_plot(horizontal, &curves, &runs))?;
         }
 
         let mut md = String::new();
@@ -238,10 +237,10 @@ impl Section for ShallowIroningSection {
             &reference_rows,
         ));
         md.push('\n');
-        md.push_str(&figures);
+        md.push_str(&figures.markdown);
         Ok(SectionReport {
             markdown: md,
-            images,
+            images: figures.images,
             status: if pass { Status::Pass } else { Status::Fail },
             summary,
         })

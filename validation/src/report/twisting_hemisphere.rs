@@ -6,9 +6,9 @@
 //! completes 180°, the plateau torque within 5 % and F_z within 3 %.
 use std::path::Path;
 
-use super::plot::{render_png, Legend, Plot, Style, BLACK_C, BLUE_C, GREEN_C, RED_C};
+use super::plot::{Legend, Plot, Style, BLACK_C, BLUE_C, GREEN_C, RED_C};
 use super::{
-    not_run_row, run_variant, shared_references, table, verdict, ReportError, Section,
+    not_run_row, run_variant, shared_references, table, verdict, Figures, ReportError, Section,
     SectionReport, Status,
 };
 use crate::benchmarks::twisting_hemisphere::{
@@ -195,21 +195,20 @@ impl Section for TwistingHemisphereSection {
             ));
         }
 
-        let mut images = Vec::new();
-        let mut figures = String::new();
-        for torque in [false, true] {
-            let file = if torque {
-                "twisting-hemisphere-torque.png"
-            } else {
-                "twisting-hemisphere-force.png"
-            };
-            let path = out.join(file);
-            render_png(&plot(torque, &refs, &runs), &path)?;
-            figures.push_str(&format!(
-                "![{} against pseudo-time]({file})\n\n",
-                if torque { "torque" } else { "vertical force" }
-            ));
-            images.push(path);
+        let mut figures = Figures::default();
+        for (torque, file, alt) in [
+            (
+                false,
+                "twisting-hemisphere-force.png",
+                "vertical force against pseudo-time",
+            ),
+            (
+                true,
+                "twisting-hemisphere-torque.png",
+                "torque against pseudo-time",
+            ),
+        ] {
+            figures.add(out, file, alt, &plot(torque, &refs, &runs))?;
         }
 
         let mut md = String::new();
@@ -243,10 +242,10 @@ impl Section for TwistingHemisphereSection {
             100.0 * TORQUE_TOLERANCE,
             100.0 * FORCE_TOLERANCE
         ));
-        md.push_str(&figures);
+        md.push_str(&figures.markdown);
         Ok(SectionReport {
             markdown: md,
-            images,
+            images: figures.images,
             status: if pass { Status::Pass } else { Status::Fail },
             summary,
         })

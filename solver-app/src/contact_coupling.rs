@@ -342,8 +342,9 @@ pub struct ContactInterface {
     pub implicit: bool,
     /// Both bodies are deformable (the springs join cells of two bodies).
     deformable_pair: bool,
-    /// A deformable pair with ε_n δ/K above [`STIFF_PENALTY`] (set at
-    /// every contact update).
+    /// A deformable pair with ε_n δ/K above [`STIFF_PENALTY`] (set until
+    /// the penalty of the increment is localised: neither ε_n nor the
+    /// geometry changes within an increment after that).
     stiff: bool,
     /// Tractions, pressures and gaps of the last call.
     pub tractions: ContactTractions,
@@ -464,6 +465,36 @@ impl ContactInterface {
     /// partner.
     pub fn normal_penalty(&self) -> f64 {
         self.law.normal_penalty
+    }
+}
+
+impl ContactInterface {
+    /// β of the linearisation from the last contact fractions: the larger
+    /// of the fraction and `memory` times the previous β (0: the fraction).
+    fn update_beta(&mut self, memory: f64) {
+        for (side, fraction) in [
+            (&mut self.master, &self.tractions.master),
+            (&mut self.slave, &self.tractions.slave),
+        ] {
+            for (b, &c) in side.beta.iter_mut().zip(&fraction.contact_fraction) {
+                *b = (*b * memory).max(c);
+            }
+        }
+    }
+
+    /// Whether the pair is deformable and ε_n times the mean half-cell
+    /// compliance of both surfaces exceeds [`STIFF_PENALTY`].
+    fn stiffly_coupled(&self, bodies: &[Body]) -> bool {
+        if !self.deformable_pair {
+            return false;
+        }
+        let (bm, bs) = (&bodies[self.master.body], &bodies[self.slave.body]);
+        let (nm, ns) = (self.master.surface.n_faces(), self.slave.surface.n_faces());
+        let sum = (0..nm)
+            .map(|i| half_cell_compliance(bm, &self.master, i))
+            .chain((0..ns).map(|i| half_cell_compliance(bs, &self.slave, i)))
+            .sum::<f64>();
+        self.law.normal_penalty * sum / (nm + ns).max(1) as f64 > STIFF_PENALTY
     }
 }
 
@@ -764,6 +795,7 @@ impl ContactSet {
                 .detect(&ci.master.surface, &ci.slave.surface, &mut ci.pairs)
                 .map_err(|e| format!("contact {}: detection: {e}", ci.slave_name))?;
             let force_start = self.times.lap(Phase::ContactDetection, start);
+            let localising = !ci.penalty_localised;
             if !ci.penalty_localised && !ci.pairs.is_empty() {
                 // first detection of the increment: penalty of the contacting faces
                 if let Ok(law) = penalty_law(
@@ -810,24 +842,10 @@ impl ContactSet {
             let eps = ci.law.normal_penalty;
             let (eps_t, friction) = (ci.law.tangential_penalty, ci.law.friction);
             if ci.implicit {
-                ci.stiff = deformable_pair && {
-                    let (bm, bs) = (&bodies[ci.master.body], &bodies[ci.slave.body]);
-                    let (nm, ns) = (ci.master.surface.n_faces(), ci.slave.surface.n_faces());
-                    let sum = (0..nm)
-                        .map(|i| half_cell_compliance(bm, &ci.master, i))
-                        .chain((0..ns).map(|i| half_cell_compliance(bs, &ci.slave, i)))
-                        .sum::<f64>();
-                    eps * sum / (nm + ns).max(1) as f64 > STIFF_PENALTY
-                };
-                let memory = if ci.stiff { 1.0 } else { BETA_MEMORY };
-                for (side, fraction) in [
-                    (&mut ci.master, &ci.tractions.master),
-                    (&mut ci.slave, &ci.tractions.slave),
-                ] {
-                    for (b, &c) in side.beta.iter_mut().zip(&fraction.contact_fraction) {
-                        *b = (*b * memory).max(c);
-                    }
+                if localising {
+                    ci.stiff = ci.stiffly_coupled(bodies);
                 }
+                ci.update_beta(if ci.stiff { 1.0 } else { BETA_MEMORY });
                 let (bm, bs) = (&bodies[ci.master.body], &bodies[ci.slave.body]);
                 let (master, slave, ggi) = (&mut ci.master, &mut ci.slave, &ci.tractions.ggi);
                 ggi_average(
@@ -958,14 +976,7 @@ impl ContactSet {
             // deformable bodies, whose β only grows within an increment,
             // from the converged contact fractions
             if ci.implicit && ci.stiff {
-                for (side, fraction) in [
-                    (&mut ci.master, &ci.tractions.master),
-                    (&mut ci.slave, &ci.tractions.slave),
-                ] {
-                    for (b, &c) in side.beta.iter_mut().zip(&fraction.contact_fraction) {
-                        *b = c;
-                    }
-                }
+                ci.update_beta(0.0);
             }
             ci.penalty_localised = false;
         }

@@ -135,6 +135,16 @@ pub trait LinearSolver {
         b: &[f64],
         x: &mut [f64],
     ) -> Result<SolveInfo, LinearSolverError>;
+
+    /// Applies the preconditioner of the last factorisation once, z = M⁻¹ r
+    /// (for a caller's own Krylov iteration on a larger system whose
+    /// diagonal blocks are the factorised matrices). Returns `false`, with
+    /// `z` untouched, for solvers that have no cheap one; the caller then
+    /// uses [`Self::solve`].
+    fn precondition(&self, r: &[f64], z: &mut [f64]) -> Result<bool, LinearSolverError> {
+        let _ = (r, z);
+        Ok(false)
+    }
 }
 
 /// Checks that a slice has length `n`.

@@ -397,6 +397,30 @@ impl LinearSolver for PcgIc0 {
         let params = self.params;
         PcgIc0::solve(self, a, b, x, &params)
     }
+
+    /// z = (D̃ + Eᵀ)⁻¹ D̃ (D̃ + E)⁻¹ r: one forward and one backward sweep.
+    fn precondition(&self, r: &[f64], z: &mut [f64]) -> Result<bool, LinearSolverError> {
+        if !self.factorised {
+            return Err(LinearSolverError::NotFactorised);
+        }
+        check_len("r", r.len(), self.n)?;
+        check_len("z", z.len(), self.n)?;
+        let fac = &self.factor;
+        let rd = fac.inv_diag();
+        let mut w_prev = 0.0;
+        for i in 0..self.n {
+            let wi = fac.forward_row(i, r[i], z, w_prev) * rd[i];
+            z[i] = wi;
+            w_prev = wi;
+        }
+        let mut z_next = 0.0;
+        for i in (0..self.n).rev() {
+            let zi = fac.backward_row(i, z[i], z, z_next);
+            z[i] = zi;
+            z_next = zi;
+        }
+        Ok(true)
+    }
 }
 
 #[cfg(test)]

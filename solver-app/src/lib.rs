@@ -14,6 +14,7 @@ pub mod anderson;
 pub mod case;
 pub mod check;
 pub mod contact_coupling;
+pub mod coupled_spring_solve;
 pub mod field_output;
 pub mod mesh_loading;
 pub mod model;

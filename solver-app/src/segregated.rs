@@ -4,6 +4,7 @@
 use crate::anderson::AndersonAcceleration;
 use crate::case::{Acceleration, LinearMethod, LinearSettings, Predictor, SolverSettings};
 use crate::contact_coupling::{CellSpring, ContactSet};
+use crate::coupled_spring_solve::CoupledSpringSolve;
 use crate::model::Body;
 use crate::predictor::LinearPredictor;
 use crate::profile::{Phase, PhaseTimes};
@@ -112,6 +113,11 @@ pub struct SegregatedSolver {
     predictor: Option<LinearPredictor>,
     /// Seconds per phase (the contact phases are in the contact set's).
     pub times: PhaseTimes,
+    /// The linear step with the contact springs coupled across components.
+    coupled: CoupledSpringSolve,
+    /// Residual and correction per component (workspaces of `coupled`).
+    coupled_rhs: [Vec<f64>; 3],
+    coupled_x: [Vec<f64>; 3],
 }
 
 fn make_solver(s: &LinearSettings, n: usize) -> Box<dyn LinearSolver + Send> {
@@ -236,6 +242,9 @@ impl SegregatedSolver {
                 Predictor::Linear => Some(LinearPredictor::new(n)),
             },
             times: PhaseTimes::default(),
+            coupled: CoupledSpringSolve::default(),
+            coupled_rhs: Default::default(),
+            coupled_x: Default::default(),
         }
     }
 
@@ -525,23 +534,27 @@ impl SegregatedSolver {
             }
         }
         self.update_fields(bodies)?;
-        for c in 0..3 {
-            let Some(mi) = self.component_matrix[c] else {
-                self.delta.iter_mut().for_each(|d| d[c] = 0.0);
-                continue;
-            };
-            for b in bodies.iter().filter(|b| !b.rigid) {
-                for (i, r) in b.momentum.residual.iter().enumerate() {
-                    self.rhs[b.offset + i] = r[c];
+        if self.springs.iter().any(|s| s.coupled) {
+            linear_iterations += self.solve_coupled(bodies)?;
+        } else {
+            for c in 0..3 {
+                let Some(mi) = self.component_matrix[c] else {
+                    self.delta.iter_mut().for_each(|d| d[c] = 0.0);
+                    continue;
+                };
+                for b in bodies.iter().filter(|b| !b.rigid) {
+                    for (i, r) in b.momentum.residual.iter().enumerate() {
+                        self.rhs[b.offset + i] = r[c];
+                    }
                 }
-            }
-            self.x.iter_mut().for_each(|x| *x = 0.0);
-            let start = Instant::now();
-            let si = self.solvers[mi].solve(&self.matrices[mi], &self.rhs, &mut self.x)?;
-            self.times.lap(Phase::LinearSolve, start);
-            linear_iterations += si.iterations;
-            for (d, &x) in self.delta.iter_mut().zip(&self.x) {
-                d[c] = x;
+                self.x.iter_mut().for_each(|x| *x = 0.0);
+                let start = Instant::now();
+                let si = self.solvers[mi].solve(&self.matrices[mi], &self.rhs, &mut self.x)?;
+                self.times.lap(Phase::LinearSolve, start);
+                linear_iterations += si.iterations;
+                for (d, &x) in self.delta.iter_mut().zip(&self.x) {
+                    d[c] = x;
+                }
             }
         }
         let mut norm_delta = 0.0;
@@ -579,6 +592,43 @@ impl SegregatedSolver {
             .max(RESIDUAL_TOTAL_FRACTION * norm_total.sqrt())
             .max(floor);
         Ok((norm_delta.sqrt() / reference, linear_iterations))
+    }
+
+    /// The correction of all components at once with the contact springs'
+    /// whole tensors ([`CoupledSpringSolve`]); returns the iterations of the
+    /// coupled system.
+    fn solve_coupled(&mut self, bodies: &[Body]) -> Result<usize, SolveError> {
+        for c in 0..3 {
+            self.coupled_rhs[c].resize(self.n, 0.0);
+            self.coupled_x[c].resize(self.n, 0.0);
+            for b in bodies.iter().filter(|b| !b.rigid) {
+                for (i, r) in b.momentum.residual.iter().enumerate() {
+                    self.coupled_rhs[c][b.offset + i] = r[c];
+                }
+            }
+        }
+        let start = Instant::now();
+        let info = self.coupled.solve(
+            &self.matrices,
+            &self.component_matrix,
+            &mut self.solvers,
+            &self.springs,
+            &self.coupled_rhs,
+            &mut self.coupled_x,
+            self.linear.tolerance,
+            self.linear.max_iterations,
+        )?;
+        self.times.lap(Phase::LinearSolve, start);
+        for (i, d) in self.delta.iter_mut().enumerate() {
+            for (c, x) in self.coupled_x.iter().enumerate() {
+                d[c] = if self.component_matrix[c].is_some() {
+                    x[i]
+                } else {
+                    0.0
+                };
+            }
+        }
+        Ok(info.iterations + info.linear_iterations)
     }
 
     /// Refreshes boundary values, gradient, stress, residual and boundary

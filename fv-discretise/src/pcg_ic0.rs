@@ -488,6 +488,34 @@ mod tests {
         check(&a, 3);
     }
 
+    /// On a 1-D Laplacian (a tree: IC(0) has no dropped fill) one
+    /// preconditioner application is the exact solve.
+    #[test]
+    fn precondition_is_exact_without_fill() {
+        let a = laplacian(40, 1, 1, 0.1);
+        let n = a.n();
+        let mut s = PcgIc0::new(n);
+        let b = rhs(n, 3);
+        let mut z = vec![0.0; n];
+        assert!(matches!(
+            LinearSolver::precondition(&s, &b, &mut z),
+            Err(LinearSolverError::NotFactorised)
+        ));
+        s.factorise(&a).unwrap();
+        assert!(LinearSolver::precondition(&s, &b, &mut z).unwrap());
+        let xd = direct(&a, &b);
+        assert!(rel_diff(&z, &xd) < 1e-12, "{}", rel_diff(&z, &xd));
+        // on a 2-D Laplacian it is an approximation, not the solve
+        let a2 = laplacian(12, 12, 1, 0.1);
+        let mut s2 = PcgIc0::new(a2.n());
+        s2.factorise(&a2).unwrap();
+        let b2 = rhs(a2.n(), 4);
+        let mut z2 = vec![0.0; a2.n()];
+        assert!(LinearSolver::precondition(&s2, &b2, &mut z2).unwrap());
+        let d = rel_diff(&z2, &direct(&a2, &b2));
+        assert!(d > 1e-4 && d < 0.5, "{d}");
+    }
+
     #[test]
     fn ic0_is_exact_on_pattern() {
         // ((D̃ + E) D̃⁻¹ (D̃ + E)ᵀ)_ij = a_ij on every stored entry when no shift was needed.

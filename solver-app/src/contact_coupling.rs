@@ -35,7 +35,8 @@ const BETA_MEMORY: f64 = 0.5;
 /// per unit `penalty_scale`): without it the iteration diverges from
 /// `penalty_scale` 6 (ratio 2.9) up — 5.5 still converges, in 783 outer
 /// iterations — with it 5.5, 6, 9, 11 and 33.5 (ε_n/E = 1000) take 393,
-/// 352, 386, 268 and 297. But at the default penalty (ratio 0.47–0.72
+/// 352, 386, 268 and 297 (with the springs solved coupled,
+/// [`INCLINED_SHARE`]: 72, 75, 82, 88 and 123). But at the default penalty (ratio 0.47–0.72
 /// on the validation cases) it costs 1.5–2× (concentric cylinders 140 →
 /// 222, concentric spheres 102 → 164), and there it stalled curved beams
 /// at `penalty_scale` 4 (ratio 2.0); so only above this ratio.

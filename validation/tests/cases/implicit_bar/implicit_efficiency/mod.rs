@@ -53,9 +53,14 @@
 //! 0.2: 81 (Δp 1.4e-5), gap 8.2 %. At 1000 (f_n 14.8): implicit 475 (gap
 //! 0.10 %, 4.1 s) since the stiff-pair treatment below (before: NOT
 //! converged after 2,000, residual 3.3e-3); explicit at r = 0.04 NOT
-//! converged after 3,000 (residual 1.5e-3, 63 s); explicit at 1000
-//! with r = 0.04 and 0.02 not converged after 1,500 either (residual 9e-4,
-//! 1.6e-3); ε_n/E_s = 100 not run (≈ 30 ms per outer iteration). Thesis
+//! converged after 3,000 (residual 1.5e-3, 63 s); r = 0.02 NOT converged
+//! after 15,000 (residual 6.8e-4, 395 s); r = 0.01 stops on the
+//! displacement tolerance after 406 (6.3 s) with pressures 18 % from the
+//! implicit ones (Δp 0.18: the traction moves too slowly for the
+//! displacement residual to see it), so no explicit run is a reference
+//! within 0.5 % yet. The contact normals here are near the axis
+//! (inclined share 0.13–0.16), so the springs stay on the segregated path;
+//! solved coupled it takes 362 outer iterations but 29 s against 6.7 s; ε_n/E_s = 100 not run (≈ 30 ms per outer iteration). Thesis
 //! Table 4.7: 73/68/11 %, 79/230/1.5 %, 81/903/0.2 %.
 //!
 //! concentric-cylinders (two deformable tubes, non-conformal): ε_n(1) =
@@ -66,9 +71,29 @@
 //! |---------|-------|-------------------|-------------------------------------------|--------------|-------|
 //! | 10      | 0.335 | 254               | 0.05, 0.1, 0.2, 0.4: —                    | —            | > 78  |
 //! | 100     | 3.35  | 579 (was 1,431)   | 0.005: 955 (Δp 4.4e-4), 0.01…0.05: —      | 955 (0.005)  | 0.67  |
-//! | 1000    | 33.5  | 297 (was —)       | 0.0005: 5,246, 0.001: 4,048, 0.002: 2,755 (2,732 now), 0.005: — | 2,732 (0.002) | 9.2 (Δp 1.4e-3) |
+//! | 1000    | 33.5  | 123 (was 297, before that —) | 0.0005: 5,246, 0.001: 4,048, 0.002: 2,732, 0.0025/0.003/0.004/0.005: — | 2,732 (0.002) | 22.2 (Δp 1.35e-3) |
 //!
-//! At 1000 the implicit coupling now converges in 297 outer iterations
+//! Wall time at 1000: implicit 0.17 s, explicit 1.30 s (1.85 against 0.63
+//! µs per cell per outer iteration: each implicit one runs about 40
+//! iterations of the coupled spring solve).
+//!
+//! Since the coupled spring solve (`solver_app::coupled_spring_solve`,
+//! used for stiff pairs whose contact normals are inclined to the axes,
+//! `INCLINED_SHARE`): the springs' n_c n_d parts are no longer lagged, so
+//! neither the dominant diagonal nor the carried-traction base below is
+//! needed there, and at f_n = 5.5 / 6 / 9 / 11 / 20 / 33.5 / 100 the
+//! counts are 72 / 75 / 82 / 88 / 135 / 123 / 203 (before: 393 / 352 /
+//! 386 / 268 / — / 297 / —). Measured alternatives: coupled solve with the
+//! carried-traction base kept, 300 at 33.5; with the dominant diagonal
+//! kept, 300; coupled solve at the segregated linear tolerance 0.1, 442
+//! (1e-2: 382, 1e-3: 287, 1e-4 … 1e-6: 123); coupled solve for every
+//! deformable pair at the default penalty (not kept): concentric
+//! cylinders 140 → 52, parallel cylinders 1,104 → 221, but NAFEMS punch
+//! 237 → 344 and 1.6–3× the wall time on concentric spheres, twisting
+//! blocks and sphere–block for the same count; with β fading as at the
+//! default penalty it diverged above f_n 6 (865 at 6, 2,746 at 11).
+//!
+//! Before that, at 1000 the implicit coupling converged in 297 outer iterations
 //! because ε_n δ/K ≈ 16 makes the pair "stiff" (`STIFF_PENALTY` = 2.5 in
 //! `solver_app::contact_coupling`): the linearisation starts from the
 //! carried traction, β is kept within the increment and the cell springs
@@ -166,8 +191,8 @@
 //! previous iterate; its error then shrinks by ε_n/(K_mode + ε_n) per outer
 //! iteration, which tends to 1 as ε_n grows.
 //!
-//! So the acceptance point is met on hertz-cylinder fine only (14.9×,
-//! Δp 0.14 %); nearly on concentric cylinders (9.2×, Δp 0.14 %); not on
+//! So the acceptance point is met on hertz-cylinder fine (14.9×, Δp
+//! 0.14 %) and on concentric cylinders (22×, Δp 0.14 %); not on
 //! the coarse mesh (6.5×), not on the sphere on a rigid plane (1.9×: the
 //! optimally relaxed explicit coupling needs only 136). The tests below
 //! assert what is achieved.

@@ -84,10 +84,10 @@ pub struct CellSpring {
     /// Direction of the spring (the master normal): component c carries
     /// stiffness·n_c² + tangential·(1 − n_c²).
     pub normal: Vector,
-    /// Add the off-diagonal row to the diagonal (stiff pairs, [`STIFF_PENALTY`]).
+    /// Add the off-diagonal row to the diagonal (stiff pairs, `STIFF_PENALTY`).
     pub dominant: bool,
     /// Solve the whole spring tensor, components coupled (stiff pairs with
-    /// inclined normals, [`INCLINED_SHARE`]; [`crate::coupled_spring_solve`]).
+    /// inclined normals, `INCLINED_SHARE`; [`crate::coupled_spring_solve`]).
     pub coupled: bool,
 }
 

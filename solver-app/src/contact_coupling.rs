@@ -100,7 +100,7 @@ impl CellSpring {
     /// iv–v); with the diagonal alone each component would take up the
     /// whole normal approach by itself, so that a stiff spring inclined at
     /// 45° is overcorrected twofold and the face gaps zig-zag. The
-    /// dominant diagonal (stiff pairs only, [`STIFF_PENALTY`]) makes the
+    /// dominant diagonal (stiff pairs only, `STIFF_PENALTY`) makes the
     /// lagged splitting contract. The residual is the full one, so the
     /// converged state does not depend on it.
     #[inline]

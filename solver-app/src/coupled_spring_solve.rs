@@ -26,7 +26,7 @@
 //! positive semi-definite 6×6 block. The residual R is the full one, as
 //! before: the converged state does not change, only the path to it.
 //!
-//! Cost: the solve runs to [`COUPLED_TOLERANCE`], not to the segregated
+//! Cost: the solve runs to `COUPLED_TOLERANCE`, not to the segregated
 //! path's 0.1, and takes about 40 iterations on concentric cylinders and
 //! 50 on the sphere–block mesh, so one outer iteration costs 3–4× a
 //! segregated one; it is used only where the fewer outer iterations pay
@@ -87,7 +87,7 @@ impl CoupledSpringSolve {
     /// correction. `springs` are those assembled into the matrices (their
     /// off-diagonal tensor parts are added here, and any dominant diagonal
     /// taken out). The iteration stops at the relative residual
-    /// min(`tolerance`, [`COUPLED_TOLERANCE`]) or after `max_iterations`.
+    /// min(`tolerance`, `COUPLED_TOLERANCE`) or after `max_iterations`.
     #[allow(clippy::too_many_arguments)]
     pub fn solve(
         &mut self,

@@ -54,7 +54,7 @@ pub struct History {
     out: BufWriter<File>,
 }
 
-/// Reported patches: (body index, patch index, "<body>/<patch>").
+/// Reported patches: (body index, patch index, `"<body>/<patch>"`).
 pub fn reported_patches(bodies: &[Body]) -> Vec<(usize, usize, String)> {
     let mut v = Vec::new();
     for (bi, b) in bodies.iter().enumerate() {
@@ -94,7 +94,7 @@ pub fn history_columns(bodies: &[Body], contacts: &ContactSet) -> Vec<String> {
 }
 
 /// Patches of deformable bodies with a `rigid-motion` condition that has a
-/// rotation: (body index, patch index, "<body>/<patch>"). Their moments
+/// rotation: (body index, patch index, `"<body>/<patch>"`). Their moments
 /// close the history rows.
 pub fn moment_patches(bodies: &[Body]) -> Vec<(usize, usize, String)> {
     reported_patches(bodies)

@@ -99,7 +99,7 @@
 //! neither the dominant diagonal nor the carried-traction base below is
 //! needed there, and at f_n = 5.5 / 6 / 9 / 11 / 20 / 33.5 / 100 the
 //! counts are 72 / 75 / 82 / 88 / 135 / 123 / 203 (before: 393 / 352 /
-//! 386 / 268 / — / 297 / —). Measured alternatives: coupled solve with the
+//! 386 / 268 / not measured / 297 / 1,018). Measured alternatives: coupled solve with the
 //! carried-traction base kept, 300 at 33.5; with the dominant diagonal
 //! kept, 300; coupled solve at the segregated linear tolerance 0.1, 442
 //! (1e-2: 382, 1e-3: 287, 1e-4 … 1e-6: 123); coupled solve for every

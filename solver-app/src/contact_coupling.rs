@@ -902,7 +902,9 @@ impl ContactSet {
                 if localising {
                     ci.stiff = ci.stiffly_coupled(bodies);
                 }
-                ci.coupled_components |= ci.stiff && ci.inclined_share() > INCLINED_SHARE;
+                if ci.stiff && !ci.coupled_components {
+                    ci.coupled_components = ci.inclined_share() > INCLINED_SHARE;
+                }
                 ci.update_beta(if ci.stiff { 1.0 } else { BETA_MEMORY });
                 let (bm, bs) = (&bodies[ci.master.body], &bodies[ci.slave.body]);
                 let (master, slave, ggi) = (&mut ci.master, &mut ci.slave, &ci.tractions.ggi);

@@ -61,7 +61,9 @@ pub struct CoupledSpringSolve {
 pub struct CoupledSolveInfo {
     /// Iterations of the coupled system.
     pub iterations: usize,
-    /// Component solves (preconditioner applications), summed linear iterations.
+    /// Iterations of the full component solves that stood in for the
+    /// preconditioner (solvers without [`LinearSolver::precondition`]; 0
+    /// with IC(0)).
     pub linear_iterations: usize,
 }
 
@@ -102,11 +104,14 @@ impl CoupledSpringSolve {
     ) -> Result<CoupledSolveInfo, LinearSolverError> {
         let n = b[0].len();
         self.resize(n);
-        let mut solved_buf = [0usize; 3];
+        // (component, its matrix) of the solved components
+        let mut solved_buf = [(0usize, 0usize); 3];
         let mut n_solved = 0;
-        for c in (0..3).filter(|&c| component_matrix[c].is_some()) {
-            solved_buf[n_solved] = c;
-            n_solved += 1;
+        for (c, m) in component_matrix.iter().enumerate() {
+            if let Some(mi) = *m {
+                solved_buf[n_solved] = (c, mi);
+                n_solved += 1;
+            }
         }
         let solved = &solved_buf[..n_solved];
         let tolerance = tolerance.min(COUPLED_TOLERANCE);
@@ -114,10 +119,10 @@ impl CoupledSpringSolve {
         let dot = |a: &[Vec<f64>; 3], b: &[Vec<f64>; 3]| -> f64 {
             solved
                 .iter()
-                .map(|&c| a[c].iter().zip(&b[c]).map(|(x, y)| x * y).sum::<f64>())
+                .map(|&(c, _)| a[c].iter().zip(&b[c]).map(|(x, y)| x * y).sum::<f64>())
                 .sum()
         };
-        for &c in solved {
+        for &(c, _) in solved {
             x[c].iter_mut().for_each(|v| *v = 0.0);
             self.r[c].copy_from_slice(&b[c]);
         }
@@ -131,10 +136,7 @@ impl CoupledSpringSolve {
                             solvers: &mut [Box<dyn LinearSolver + Send>],
                             info: &mut CoupledSolveInfo|
          -> Result<(), LinearSolverError> {
-            for &c in solved {
-                let Some(mi) = component_matrix[c] else {
-                    continue;
-                };
+            for &(c, mi) in solved {
                 if !solvers[mi].precondition(&r[c], &mut z[c])? {
                     z[c].iter_mut().for_each(|v| *v = 0.0);
                     let si = solvers[mi].solve(&matrices[mi], &r[c], &mut z[c])?;
@@ -144,25 +146,24 @@ impl CoupledSpringSolve {
             Ok(())
         };
         precondition(&self.r, &mut self.z, solvers, &mut info)?;
-        for &c in solved {
+        for &(c, _) in solved {
             self.p[c].copy_from_slice(&self.z[c]);
         }
         let mut rz = dot(&self.r, &self.z);
         for it in 1..=max_iterations {
             info.iterations = it;
             // q = A p
-            for &c in solved {
-                let mi = component_matrix[c].unwrap_or(0);
+            for &(c, mi) in solved {
                 matrices[mi].mul_vec(&self.p[c], &mut self.q[c]);
             }
             for sp in springs {
                 let (a, bb) = (sp.cells.0 as usize, sp.cells.1 as usize);
-                for &c in solved {
+                for &(c, _) in solved {
                     // the matrix holds `component(c)`; the tensor's diagonal
                     // is `tensor_diagonal(c)`
                     let mut s =
                         (sp.tensor_diagonal(c) - sp.component(c)) * (self.p[c][a] - self.p[c][bb]);
-                    for &d in solved.iter().filter(|&&d| d != c) {
+                    for &(d, _) in solved.iter().filter(|&&(d, _)| d != c) {
                         s += sp.tensor_off_diagonal(c, d) * (self.p[d][a] - self.p[d][bb]);
                     }
                     self.q[c][a] += s;
@@ -178,7 +179,7 @@ impl CoupledSpringSolve {
                 });
             }
             let alpha = rz / pq;
-            for &c in solved {
+            for &(c, _) in solved {
                 let rows = x[c]
                     .iter_mut()
                     .zip(&mut self.r[c])
@@ -200,7 +201,7 @@ impl CoupledSpringSolve {
             let r_old_z = dot(&self.r_old, &self.z);
             let beta = (rz_new - r_old_z) / rz;
             rz = rz_new;
-            for &c in solved {
+            for &(c, _) in solved {
                 for (pi, zi) in self.p[c].iter_mut().zip(&self.z[c]) {
                     *pi = zi + beta * *pi;
                 }

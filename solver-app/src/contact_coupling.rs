@@ -613,7 +613,7 @@ impl ContactSet {
                 penalty_scale: c.penalty_scale,
                 tangential_penalty_scale: c.tangential_penalty_scale,
                 friction: c.friction.at(0.0),
-                ..Default::default()
+                slip_history: c.slip_history,
             };
             let law = penalty_law(&params, &master.surface, &slave.surface, &materials, None)
                 .map_err(|e| src.error(&key, e.to_string()))?;

@@ -2,6 +2,7 @@
 
 use super::reader::{list, Node, Res};
 use super::values::{scalar_value, ScalarValue};
+use contact_force::SlipHistory;
 
 /// `contact.algorithm`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -62,6 +63,11 @@ pub struct ContactSpec {
     pub relaxation_tangential: f64,
     /// Contact search.
     pub detection: Detection,
+    /// `slip_history`: what the trial frictional traction remembers
+    /// (`"incremental"`, default: eq. 4.20, the slip of the increment only;
+    /// `"accumulated"`: also the elastic slip committed at the end of the
+    /// previous increment, so a stick traction persists across increments).
+    pub slip_history: SlipHistory,
 }
 
 /// `friction`: μ >= 0, a number or a time table of numbers.
@@ -111,6 +117,7 @@ pub(crate) fn contact(node: &Node<'_>, bodies: &[&str]) -> Res<ContactSpec> {
         "tangential_penalty_scale",
         "relaxation",
         "detection",
+        "slip_history",
     ])?;
     let master = t.need("master", |n| body_patch(n, bodies))?;
     let slave_node = t.req("slave")?;
@@ -171,6 +178,15 @@ pub(crate) fn contact(node: &Node<'_>, bodies: &[&str]) -> Res<ContactSpec> {
                     ("advancing-front", Detection::AdvancingFront),
                     ("bvh", Detection::Bvh),
                     ("brute-force", Detection::BruteForce),
+                ],
+            )
+        })?,
+        slip_history: t.opt("slip_history", SlipHistory::Incremental, |n| {
+            n.choice(
+                "slip_history",
+                &[
+                    ("incremental", SlipHistory::Incremental),
+                    ("accumulated", SlipHistory::Accumulated),
                 ],
             )
         })?,

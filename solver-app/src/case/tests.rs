@@ -771,6 +771,7 @@ material = { model = "linear-elastic", E = 1, nu = 0.3 }
             relaxation_normal: 0.1,
             relaxation_tangential: 0.1,
             detection: Detection::AdvancingFront,
+            slip_history: contact_force::SlipHistory::Incremental,
         }]
     );
     let c = parse(&format!(
@@ -851,6 +852,19 @@ algorithm = "pointwise"
     assert_eq!(e.key.as_deref(), Some("contact[0].relaxation.normal"));
     let e = bad("master = \"plane/x\"\nslave = \"cyl/x\"\nrelaxation = { tangential = 1.5 }");
     assert_eq!(e.key.as_deref(), Some("contact[0].relaxation.tangential"));
+    let c = parse(&format!(
+        "{two}[[contact]]\nmaster = \"plane/x\"\nslave = \"cyl/x\"\nslip_history = \"accumulated\"\n"
+    ));
+    assert_eq!(
+        c.contacts[0].slip_history,
+        contact_force::SlipHistory::Accumulated
+    );
+    let e = bad("master = \"plane/x\"\nslave = \"cyl/x\"\nslip_history = \"total\"");
+    assert_eq!(e.key.as_deref(), Some("contact[0].slip_history"));
+    assert!(
+        e.message.contains("\"incremental\", \"accumulated\""),
+        "{e}"
+    );
     let e = bad("master = \"plane/x\"\nslave = \"cyl/x\"\ncoupling = \"weak\"");
     assert!(e.message.contains("\"explicit\", \"implicit\""), "{e}");
     let e = bad("master = \"plane/x\"\nslave = \"cyl/x\"\ndetection = \"grid\"");

@@ -1,6 +1,7 @@
 //! twisting-hemisphere (thesis §5.3.5, figs. 5.28–5.32; Sauer & De
-//! Lorenzis 2015): a hollow neo-Hookean hemisphere pushed 1 mm onto a
-//! block without friction (pseudo-time t 0 → 1, 10 increments), then
+//! Lorenzis 2015): a hollow neo-Hookean hemisphere (E = 50) pushed 1 mm
+//! into a softer block (E = 10; `case.toml` says why) without friction
+//! (pseudo-time t 0 → 1, 10 increments), then
 //! twisted 180° about the vertical axis with μ = 0.5 (t 1 → 10, 90
 //! increments). Measured: the vertical reaction F_z on the hemisphere's
 //! rim and the twisting torque M_z (the moment column of its rigid-motion

@@ -23,7 +23,7 @@
 //! m_P = ρ_P Ω_P conserved) and the matrix diagonal m_P/Δt².
 use crate::stress_law::current_area_vector;
 use crate::{LeastSquaresGradient, PatchCondition, StressLaw};
-use fv_materials::updated_lagrangian_stress;
+use fv_materials::{updated_lagrangian_stress, MaterialState};
 use fv_mesh::{MeshGeometry, PolyMesh, Tensor, Vector};
 
 /// Knobs of the discretisation.
@@ -148,6 +148,18 @@ pub struct SolidMomentum {
     /// 10 m under a constant shear traction, its loaded face's lag grew by
     /// 1.5e-4 m per increment).
     traction_offset: Vec<Vector>,
+    /// Updated Lagrangian only: the material state of every boundary face
+    /// whose force comes from its own stress (prescribed displacement,
+    /// symmetry, normal displacement), advanced at the end of every
+    /// increment by the face gradient of eq. 3.23 and committed with the
+    /// cells. The face stress is then σ(f_b F_b) rather than σ(f_b F_P) of
+    /// the owner cell: with the cell's state, each increment started the
+    /// face from the cell-centre stress and had to rebuild the difference
+    /// through a new normal derivative, so the solution crept at constant
+    /// load (twisting hemisphere: F_z −5 % in ten increments of held
+    /// indentation) and depended on the number of increments; die drawing
+    /// stalled at 0.1825 m and now runs to the end.
+    face_state: Option<MaterialState>,
     /// u, u_b and n·∇u at the start of the current attempt of an increment
     /// (to redo it with a smaller step, [`Self::restore_start`]).
     saved: (Vec<Vector>, Vec<Vector>, Vec<Vector>),
@@ -185,7 +197,12 @@ impl SolidMomentum {
             .collect();
         let ul = law.is_updated_lagrangian();
         let ul_len = |n: usize| if ul { n } else { 0 };
+        let face_state = match &law {
+            StressLaw::UpdatedLagrangian { law, .. } => Some(law.new_state(nb)),
+            _ => None,
+        };
         let mut s = SolidMomentum {
+            face_state,
             k: law.implicit_stiffness(),
             dn: vec![0.0; nf],
             kb: vec![Vector::zeros(); nb],
@@ -305,6 +322,7 @@ impl SolidMomentum {
     /// converged increment *before* the mesh moves: stores the converged
     /// face traction per current area, `(n·σ̂_b + offset)/ratio`.
     pub fn hold_face_tractions(&mut self, mesh: &PolyMesh, geom: &MeshGeometry) {
+        self.hold_face_states(mesh, geom);
         self.set_traction_offsets(mesh, geom, |m, b, o, n| {
             let grad_b = face_gradient(&m.grad_u[o], n, &m.snd_b[b]);
             let (t_b, ratio) = m.face_traction(o, &grad_b, n);
@@ -331,6 +349,9 @@ impl SolidMomentum {
     /// called: the trial material state is committed and the current
     /// displacement becomes the start of the next increment.
     pub fn commit_increment(&mut self) {
+        if let Some(fs) = &mut self.face_state {
+            fs.commit();
+        }
         if let StressLaw::UpdatedLagrangian { state, .. } = &mut self.law {
             state.commit();
             self.u_old.copy_from_slice(&self.u);
@@ -358,6 +379,9 @@ impl SolidMomentum {
         self.u.copy_from_slice(&self.saved.0);
         self.u_b.copy_from_slice(&self.saved.1);
         self.snd_b.copy_from_slice(&self.saved.2);
+        if let Some(fs) = &mut self.face_state {
+            fs.discard();
+        }
         if let StressLaw::UpdatedLagrangian { law, state } = &mut self.law {
             state.discard();
             // the failed attempt may have left non-finite fields behind: the
@@ -606,7 +630,47 @@ impl SolidMomentum {
     /// Surface-force tensor σ̂ at boundary face f (σ under small strain).
     #[inline]
     fn boundary_sigma_hat(&self, f: usize, b: usize, o: usize, n: &Vector) -> Tensor {
-        self.sigma_hat_at(o, &self.boundary_gradient(f, b, o, n))
+        let g = self.boundary_gradient(f, b, o, n);
+        if let (Some(fs), StressLaw::UpdatedLagrangian { law, .. }) = (&self.face_state, &self.law)
+        {
+            if let Some(sig) = law.stress_at(fs, b, &g) {
+                let fg = Tensor::identity() + g.transpose();
+                if let Some(h) = updated_lagrangian_stress(&sig, &fg) {
+                    return h;
+                }
+            }
+        }
+        self.sigma_hat_at(o, &g)
+    }
+
+    /// Trial state of the stress faces from their converged face gradient
+    /// (before the mesh moves); committed with the cells.
+    fn hold_face_states(&mut self, mesh: &PolyMesh, geom: &MeshGeometry) {
+        let Some(mut fs) = self.face_state.take() else {
+            return;
+        };
+        if let StressLaw::UpdatedLagrangian { law, .. } = &self.law {
+            let ni = mesh.n_internal_faces();
+            for (p, cond) in mesh.patches.iter().zip(&self.conditions) {
+                if !matches!(
+                    cond,
+                    PatchCondition::Displacement(_)
+                        | PatchCondition::Symmetry
+                        | PatchCondition::NormalDisplacement(_)
+                ) {
+                    continue;
+                }
+                for f in p.faces() {
+                    let b = f - ni;
+                    let o = mesh.owner[f] as usize;
+                    let g = self.boundary_gradient(f, b, o, &geom.face_normals[f]);
+                    if let Some((_, trial)) = law.update_point(&fs.committed(b), &g) {
+                        fs.set_trial(b, &trial);
+                    }
+                }
+            }
+        }
+        self.face_state = Some(fs);
     }
 
     /// σ̂ at a point of cell `o` with gradient `grad`, or the cell's own σ̂

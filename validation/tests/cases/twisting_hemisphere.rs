@@ -189,7 +189,7 @@ fn full_twist_hemisphere_master() {
 
 /// The full case on the benchmark's coarse polyMesh. Measured: runs to
 /// 180°; F_z +1.4 % at 0°, −3.6 % at 80°, −2.2 % at 180°; plateau torque
-/// 4.148 N·mm, +2.6 %. FAILS on F_z between 40° and 120° (3 %).
+/// 4.148 N·mm, +2.6 %. FAILS on F_z at 90° (−3.3 %; 3 % asked).
 #[test]
 #[ignore]
 fn full_twist_benchmark_mesh() {

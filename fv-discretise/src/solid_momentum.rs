@@ -631,16 +631,13 @@ impl SolidMomentum {
     #[inline]
     fn boundary_sigma_hat(&self, f: usize, b: usize, o: usize, n: &Vector) -> Tensor {
         let g = self.boundary_gradient(f, b, o, n);
-        if let (Some(fs), StressLaw::UpdatedLagrangian { law, .. }) = (&self.face_state, &self.law)
-        {
-            if let Some(sig) = law.stress_at(fs, b, &g) {
-                let fg = Tensor::identity() + g.transpose();
-                if let Some(h) = updated_lagrangian_stress(&sig, &fg) {
-                    return h;
-                }
-            }
+        match &self.face_state {
+            Some(fs) => match self.law.point_stress_in(fs, b, &g) {
+                Some((_, h)) => h,
+                None => self.sigma_hat_at(o, &g),
+            },
+            None => self.sigma_hat_at(o, &g),
         }
-        self.sigma_hat_at(o, &g)
     }
 
     /// Trial state of the stress faces from their converged face gradient

@@ -65,8 +65,24 @@ impl StressLaw {
                 let s = m.stress(grad);
                 Some((s, s))
             }
-            StressLaw::UpdatedLagrangian { law, state } => {
-                let sigma = law.stress_at(state, cell, grad)?;
+            StressLaw::UpdatedLagrangian { state, .. } => self.point_stress_in(state, cell, grad),
+        }
+    }
+
+    /// [`Self::point_stress`] of point `i` of another state than the
+    /// cells' (e.g. the boundary faces'); updated Lagrangian only (`None`
+    /// under small strain, whose stress has no state).
+    #[inline]
+    pub fn point_stress_in(
+        &self,
+        state: &MaterialState,
+        i: usize,
+        grad: &Tensor,
+    ) -> Option<(Tensor, Tensor)> {
+        match self {
+            StressLaw::Small(_) => None,
+            StressLaw::UpdatedLagrangian { law, .. } => {
+                let sigma = law.stress_at(state, i, grad)?;
                 let f = Tensor::identity() + grad.transpose();
                 Some((sigma, updated_lagrangian_stress(&sigma, &f)?))
             }

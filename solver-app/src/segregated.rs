@@ -120,6 +120,16 @@ pub struct SegregatedSolver {
     coupled_x: [Vec<f64>; 3],
 }
 
+/// Component `c` of every deformable body's cell residual into the global
+/// vector `out` (at the body's offset).
+fn gather_residual(bodies: &[Body], c: usize, out: &mut [f64]) {
+    for b in bodies.iter().filter(|b| !b.rigid) {
+        for (i, r) in b.momentum.residual.iter().enumerate() {
+            out[b.offset + i] = r[c];
+        }
+    }
+}
+
 fn make_solver(s: &LinearSettings, n: usize) -> Box<dyn LinearSolver + Send> {
     match s.method {
         LinearMethod::PcgIc => Box::new(fv_discretise::PcgIc0::with_params(
@@ -542,11 +552,7 @@ impl SegregatedSolver {
                     self.delta.iter_mut().for_each(|d| d[c] = 0.0);
                     continue;
                 };
-                for b in bodies.iter().filter(|b| !b.rigid) {
-                    for (i, r) in b.momentum.residual.iter().enumerate() {
-                        self.rhs[b.offset + i] = r[c];
-                    }
-                }
+                gather_residual(bodies, c, &mut self.rhs);
                 self.x.iter_mut().for_each(|x| *x = 0.0);
                 let start = Instant::now();
                 let si = self.solvers[mi].solve(&self.matrices[mi], &self.rhs, &mut self.x)?;
@@ -601,11 +607,7 @@ impl SegregatedSolver {
         for c in 0..3 {
             self.coupled_rhs[c].resize(self.n, 0.0);
             self.coupled_x[c].resize(self.n, 0.0);
-            for b in bodies.iter().filter(|b| !b.rigid) {
-                for (i, r) in b.momentum.residual.iter().enumerate() {
-                    self.coupled_rhs[c][b.offset + i] = r[c];
-                }
-            }
+            gather_residual(bodies, c, &mut self.coupled_rhs[c]);
         }
         let start = Instant::now();
         let info = self.coupled.solve(

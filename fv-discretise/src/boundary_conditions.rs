@@ -62,6 +62,15 @@ pub struct LinearisedContact {
     /// cells of the global system and the caller assembles it (diagonal and
     /// cross-body coefficient, eq. 4.69 with the virtual neighbour 4.72).
     pub grounded: bool,
+    /// Current over mesh area of each face, |Γ|/|Γ₀|, from the moved
+    /// contact surface (updated Lagrangian, two deformable bodies; 0 = from
+    /// the face gradient, |J f⁻ᵀ n|). The contact algorithm integrates its
+    /// tractions over the moved surface; carrying them over the same areas
+    /// makes the force each body receives the force the contact computed,
+    /// equal and opposite on the two sides. With the face gradient's areas
+    /// the twisting hemisphere's top and the block's base differed by 0.86 %
+    /// at the end of the indentation; with these, by under 1e-6.
+    pub area_ratio: Vec<f64>,
 }
 
 impl LinearisedContact {
@@ -75,6 +84,17 @@ impl LinearisedContact {
             reference: vec![Vector::zeros(); n],
             opposite_shift: vec![Vector::zeros(); n],
             grounded: true,
+            area_ratio: vec![0.0; n],
+        }
+    }
+
+    /// Current over mesh area of face `i`: the moved surface's if set,
+    /// otherwise `from_gradient` (|J f⁻ᵀ n| of the face gradient).
+    #[inline]
+    pub fn current_area_ratio(&self, i: usize, from_gradient: f64) -> f64 {
+        match self.area_ratio.get(i) {
+            Some(&r) if r > 0.0 => r,
+            _ => from_gradient,
         }
     }
 
@@ -214,6 +234,17 @@ mod linearised_contact_tests {
         lc.opposite_shift[0] = Vector::new(2e-3, 1e-3, 0.0);
         let t = lc.traction_at(0, &Vector::new(2e-3, 0.011, 0.0));
         assert!((t - lc.traction[0]).norm() < 1e-12);
+    }
+
+    #[test]
+    fn area_ratio_of_the_moved_surface_overrides_the_face_gradient() {
+        let mut lc = one_face(Vector::new(0.0, 1.0, 0.0), 100.0, 0.0);
+        // unset (a new increment): the face gradient's ratio
+        assert_eq!(lc.current_area_ratio(0, 1.07), 1.07);
+        lc.area_ratio[0] = 0.93;
+        assert_eq!(lc.current_area_ratio(0, 1.07), 0.93);
+        // a face beyond the list also falls back
+        assert_eq!(lc.current_area_ratio(1, 1.07), 1.07);
     }
 
     #[test]

@@ -360,9 +360,21 @@ impl SolidMomentum {
             self.du_b.iter_mut().for_each(|d| *d = Vector::zeros());
             self.grad_u.iter_mut().for_each(|g| *g = Tensor::zeros());
             self.snd_b.iter_mut().for_each(|g| *g = Vector::zeros());
+            self.forget_contact_areas();
         }
         if let Some(inertia) = &mut self.inertia {
             inertia.advance(&self.u);
+        }
+    }
+
+    /// The moved contact surfaces' area ratios belong to the increment
+    /// (attempt) that measured them: back to the face gradient's until
+    /// the next contact update.
+    fn forget_contact_areas(&mut self) {
+        for cond in &mut self.conditions {
+            if let PatchCondition::LinearisedContact(lc) = cond {
+                lc.area_ratio.iter_mut().for_each(|r| *r = 0.0);
+            }
         }
     }
 
@@ -382,6 +394,7 @@ impl SolidMomentum {
         if let Some(fs) = &mut self.face_state {
             fs.discard();
         }
+        self.forget_contact_areas();
         if let StressLaw::UpdatedLagrangian { law, state } = &mut self.law {
             state.discard();
             // the failed attempt may have left non-finite fields behind: the
@@ -548,7 +561,8 @@ impl SolidMomentum {
                         let grad_b = grad_at(&g);
                         let (t_b, ratio) = self.face_traction(o, &grad_b, &n);
                         let t_b = t_b + self.offset_at(b, &grad_b);
-                        let t_extr = lc.traction_at(i, &extrapolated) * ratio;
+                        let t_extr =
+                            lc.traction_at(i, &extrapolated) * lc.current_area_ratio(i, ratio);
                         let r = g + (t_extr - t_b) / self.k;
                         let g_new = lc.solve_normal_derivative(i, self.dn[f] / self.k, &r);
                         self.snd_b[b] = g_new;
@@ -751,7 +765,14 @@ impl SolidMomentum {
                         -current_area_vector(ul, &g, &area) * pr[f - p.start]
                     }
                     PatchCondition::LinearisedContact(lc) => {
-                        lc.traction_at(f - p.start, &self.u_b[b]) * current_mag()
+                        let i = f - p.start;
+                        let ratio = lc.area_ratio.get(i).copied().unwrap_or(0.0);
+                        let mag = if ratio > 0.0 {
+                            ratio * geom.face_mag[f]
+                        } else {
+                            current_mag()
+                        };
+                        lc.traction_at(i, &self.u_b[b]) * mag
                     }
                     PatchCondition::Symmetry | PatchCondition::NormalDisplacement(_) => {
                         let s = self.boundary_sigma_hat(f, b, o, &n);

@@ -883,12 +883,32 @@ impl ContactSet {
                 .map_err(|e| format!("contact {}: {e}", ci.slave_name))?;
             max_change = max_change.max(info.relative_change());
             if self.trace {
+                // the force the bodies' residuals carry on their contact
+                // patches (last residual evaluation) against the force of
+                // the contact algorithm
+                let carried = |side: &ContactSide| {
+                    let b = &bodies[side.body];
+                    if b.rigid {
+                        Vector::zeros()
+                    } else {
+                        b.momentum.patch_force(&b.mesh, side.patch)
+                    }
+                };
+                let (cm, cs) = (carried(&ci.master), carried(&ci.slave));
                 eprintln!(
-                    "    contact {}: force {:.6e} slave force {:.4e} {:.4e} stick {} slip {} max pen {:.4e} area {:.4e} eps {:.3e}",
+                    "    contact {}: carried by master [{:.4e} {:.4e} {:.4e}] slave [{:.4e} {:.4e} {:.4e}]",
+                    ci.slave_name, cm.x, cm.y, cm.z, cs.x, cs.y, cs.z
+                );
+                eprintln!(
+                    "    contact {}: force {:.6e} slave force [{:.4e} {:.4e} {:.4e}] master force [{:.4e} {:.4e} {:.4e}] stick {} slip {} max pen {:.4e} area {:.4e} eps {:.3e}",
                     ci.slave_name,
                     ci.stats.normal_force,
                     ci.stats.slave_force.x,
                     ci.stats.slave_force.y,
+                    ci.stats.slave_force.z,
+                    ci.stats.master_force.x,
+                    ci.stats.master_force.y,
+                    ci.stats.master_force.z,
                     ci.stats.n_stick,
                     ci.stats.n_slip,
                     ci.stats.max_penetration,
@@ -972,6 +992,23 @@ impl ContactSet {
                             let series = |c: f64| if c > 0.0 { c / (1.0 + c * ch) } else { 0.0 };
                             lc.stiffness[i] = series(eps * beta);
                             lc.tangential_stiffness[i] = series(eps_t * beta);
+                        }
+                        // between two deformable bodies: each receives the
+                        // force the contact computed (against a rigid body
+                        // nothing is to be conserved, and the die drawing's
+                        // last increments diverged with it)
+                        if deformable_pair && b.momentum.law.is_updated_lagrangian() {
+                            let first = b.mesh.patches[side.patch].start;
+                            let mesh_mag = &b.geom.face_mag[first..];
+                            for ((r, &a), &a0) in lc
+                                .area_ratio
+                                .iter_mut()
+                                .zip(&side.surface.face_mag)
+                                .zip(mesh_mag)
+                            {
+                                let ratio = a / a0;
+                                *r = if ratio.is_finite() { ratio } else { 0.0 };
+                            }
                         }
                         let n = lc.reference.len();
                         lc.reference

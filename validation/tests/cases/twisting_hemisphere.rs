@@ -15,8 +15,11 @@ use validation::shared_dir;
 
 /// F_z at the end of the indentation (t = 1, 1 mm) measured as shipped
 /// (implicit coupling, block master, generated mesh, Rhie–Chow 1), N; the
-/// check of the case where `../shared` is absent.
-const FZ_INDENTATION_END: f64 = 12.4375;
+/// check of the case where `../shared` is absent. Since the contact force
+/// is carried over the moved surface's areas (`LinearisedContact::
+/// area_ratio`) the block's base reads the same force (12.3769 N); before,
+/// the hemisphere's top read 12.4375 N and the base 12.3308 N.
+const FZ_INDENTATION_END: f64 = 12.3769;
 
 fn report(label: &str, r: &Twist) {
     eprintln!(
@@ -42,8 +45,8 @@ fn report(label: &str, r: &Twist) {
     }
 }
 
-/// The indentation as shipped (10 increments of 0.1 mm, 1,240 outer
-/// iterations in all; 7 s): F_z at 1 mm = 12.44 N, +1.2 % on
+/// The indentation as shipped (10 increments of 0.1 mm, about 1,150 outer
+/// iterations in all; 7 s): F_z at 1 mm = 12.38 N, +0.7 % on
 /// Sauer–De Lorenzis (12.295 N at 0°); the force grows faster than
 /// linearly and there is no twisting
 /// moment while the contact is frictionless and the motion a pure

@@ -245,6 +245,52 @@ impl Body {
         Ok(())
     }
 
+    /// Appends the prescribed boundary values of this body at time `t`:
+    /// displacements (a rigid motion as its translation and its rotation
+    /// tensor minus identity times the body's size) to `kinematic`, and
+    /// forces, tractions and pressures to `loads`. The change of these from
+    /// one time to another is the direction of the loading path (used by
+    /// the linear predictor, [`crate::predictor`]).
+    pub fn prescribed_values(&self, t: f64, kinematic: &mut Vec<f64>, loads: &mut Vec<f64>) {
+        // the extent of the boundary: rotation and translation weigh alike
+        let size = || {
+            let mut lo = Vector::repeat(f64::INFINITY);
+            let mut hi = Vector::repeat(f64::NEG_INFINITY);
+            for x in &self.initial_face_centres {
+                lo = lo.inf(x);
+                hi = hi.sup(x);
+            }
+            let d = (hi - lo).norm();
+            if d.is_finite() {
+                d
+            } else {
+                1.0
+            }
+        };
+        for spec in self.patch_specs.iter().flatten() {
+            match spec {
+                BoundarySpec::Displacement { value } => kinematic.extend(value.at(t)),
+                BoundarySpec::NormalDisplacement { value } => kinematic.push(value.at(t)),
+                BoundarySpec::RigidMotion {
+                    translation,
+                    rotation,
+                } => {
+                    let (tr, rot, _) = rigid_motion_at(translation.as_ref(), rotation.as_ref(), t);
+                    kinematic.extend(tr.iter());
+                    if rotation.is_some() {
+                        let l = size();
+                        kinematic.extend((rot - Tensor::identity()).iter().map(|x| x * l));
+                    }
+                }
+                BoundarySpec::Traction { value } | BoundarySpec::Force { value } => {
+                    loads.extend(value.at(t))
+                }
+                BoundarySpec::Pressure { value } => loads.push(value.at(t)),
+                BoundarySpec::Symmetry | BoundarySpec::Empty | BoundarySpec::Wedge => {}
+            }
+        }
+    }
+
     /// Sets the per-face values of every condition at time `t` (eq. 3.19, 3.21).
     pub fn refresh_conditions(&mut self, t: f64) {
         let ni = self.mesh.n_internal_faces();

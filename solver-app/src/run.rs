@@ -8,6 +8,7 @@ use crate::contact_coupling::ContactSet;
 use crate::field_output::FieldOutput;
 use crate::mesh_loading::load_mesh;
 use crate::model::{build_bodies, Body};
+use crate::predictor::PathChange;
 use crate::results::{history_columns, history_row, write_summary, History, RunLog, Summary};
 use crate::segregated::{IncrementInfo, SegregatedSolver, SolveError};
 
@@ -179,6 +180,10 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
         .any(|b| !b.rigid && b.momentum.law.is_updated_lagrangian());
     let mut t_prev = 0.0;
     let mut dt_prev = case.time.dt();
+    // the change of the prescribed values over a step (predictor), and the
+    // values at the end of the step (buffers kept across steps)
+    let mut path = PathChange::default();
+    let mut path_end = PathChange::default();
     let solve_start = Instant::now();
     let mut cell_iterations = 0.0;
     for k in 1..=case.time.steps {
@@ -226,7 +231,14 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
                 }
             }
             dt_prev = dt_k;
-            solver.set_step(t1 - t0);
+            path.clear();
+            path_end.clear();
+            for b in bodies.iter() {
+                b.prescribed_values(t0, &mut path.kinematic, &mut path.loads);
+                b.prescribed_values(t1, &mut path_end.kinematic, &mut path_end.loads);
+            }
+            path.subtract_from(&path_end);
+            solver.set_step(&path);
             let attempt = solver.solve_increment(&mut bodies, &mut contacts, |outer, res| {
                 if trace_outer {
                     eprintln!("  outer {outer}: residual {res:.3e}");

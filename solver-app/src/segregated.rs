@@ -6,7 +6,7 @@ use crate::case::{Acceleration, LinearMethod, LinearSettings, Predictor, SolverS
 use crate::contact_coupling::{CellSpring, ContactSet};
 use crate::coupled_spring_solve::CoupledSpringSolve;
 use crate::model::Body;
-use crate::predictor::LinearPredictor;
+use crate::predictor::{LinearPredictor, PathChange};
 use crate::profile::{Phase, PhaseTimes};
 use fv_discretise::{CsrMatrix, FaceSlots, LinearSolver, LinearSolverError, MomentumParams};
 use fv_mesh::Vector;
@@ -258,11 +258,11 @@ impl SegregatedSolver {
         }
     }
 
-    /// Sets the size of the step the next [`Self::solve_increment`] solves
-    /// (used by the predictor).
-    pub fn set_step(&mut self, step: f64) {
+    /// Sets the change of the prescribed values over the step the next
+    /// [`Self::solve_increment`] solves (used by the predictor).
+    pub fn set_step(&mut self, path: &PathChange) {
         if let Some(p) = &mut self.predictor {
-            p.set_step(step);
+            p.set_step(path);
         }
     }
 

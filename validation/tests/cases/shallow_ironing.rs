@@ -53,9 +53,11 @@ fn indentation_vertical_force_against_code_aster() {
 /// centred 25-increment moving average) below 1 % of its mean.
 ///
 /// Measured (implicit coupling, foundation master, the case's Rhie–Chow
-/// 0.5, boundary-face state): μ_g = 0.3055 and an oscillation of 0.763 %,
-/// both pass; 70 outer iterations per increment indenting, 300 sliding;
-/// 354 s (before the boundary-face state: 0.307 and 0.78 %). With Rhie–Chow 0.1: μ_g =
+/// 0.5, contact springs per current area, path-following predictor):
+/// μ_g = 0.3090 and an oscillation of 0.358 %, both pass; 69 outer
+/// iterations per increment indenting, 300 sliding; 334 s with `fvc`
+/// (before those two changes: 0.3055 and 0.763 %; before the
+/// boundary-face state: 0.307 and 0.78 %). With Rhie–Chow 0.1: μ_g =
 /// 0.306, oscillation 1.16 % (period five increments = one 0.1 mm
 /// foundation face, peak-to-peak 2.3 N on 126 N), which failed.
 #[test]

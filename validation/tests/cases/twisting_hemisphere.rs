@@ -158,10 +158,12 @@ fn full_case(label: &str, opts: &Options) {
 
 /// The full case as shipped (generated mesh, block master, Rhie–Chow 1,
 /// accumulated slip). Measured: runs to 180° (100 increments, ~100 s).
-/// F_z = 12.44 N at 0° (+1.2 % on Sauer–De Lorenzis), 12.19 N at 80°
-/// (−4.3 %), 12.43 N at 180° (−3.6 %) where the reference rises to
-/// 12.9 N; plateau torque 4.084 N·mm (120–179°), +1.0 % (FEBio 4.07).
-/// FAILS on F_z at 90° and 180° (3 %). Before the boundary faces kept
+/// F_z = 12.38 N at 0° (+0.7 % on Sauer–De Lorenzis), 12.18 N at 80°
+/// (−4.3 %), 12.42 N at 180° (−3.7 %) where the reference rises to
+/// 12.9 N; plateau torque 4.085 N·mm (120–179°), +1.0 % (FEBio 4.07).
+/// FAILS on F_z at 90° and 180° (3 %). Most of the miss is creep: the
+/// indentation held for ten increments without twisting loses 1.7 % of
+/// F_z (0.8 % in the first), and the first 20° of twist lose 2.1 %. Before the boundary faces kept
 /// their own material state (`fv_discretise::SolidMomentum`), every
 /// increment re-derived the stress of the block's fixed base and of the
 /// rim from the owner cells: F_z fell to 11.5 N (−10 %) within the first

@@ -88,14 +88,17 @@ impl LinearisedContact {
         }
     }
 
+    /// Current over mesh area of face `i` from the moved surface, if set.
+    #[inline]
+    pub fn moved_area_ratio(&self, i: usize) -> Option<f64> {
+        self.area_ratio.get(i).copied().filter(|&r| r > 0.0)
+    }
+
     /// Current over mesh area of face `i`: the moved surface's if set,
     /// otherwise `from_gradient` (|J f⁻ᵀ n| of the face gradient).
     #[inline]
     pub fn current_area_ratio(&self, i: usize, from_gradient: f64) -> f64 {
-        match self.area_ratio.get(i) {
-            Some(&r) if r > 0.0 => r,
-            _ => from_gradient,
-        }
+        self.moved_area_ratio(i).unwrap_or(from_gradient)
     }
 
     /// Traction at face `i` for the boundary displacement `u_b` (eqs. 4.52, 4.60–4.61).

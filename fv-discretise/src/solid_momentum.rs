@@ -296,12 +296,12 @@ impl SolidMomentum {
     /// Sets the traction offset of every face with a traction-type
     /// condition to `value(self, b, owner, n, area_ratio)` (boundary face
     /// `b`; `area_ratio` the contact's moved-surface ratio of
-    /// [`LinearisedContact::area_ratio`], 0 where none).
+    /// [`LinearisedContact::area_ratio`], if any).
     fn set_traction_offsets(
         &mut self,
         mesh: &PolyMesh,
         geom: &MeshGeometry,
-        value: impl Fn(&Self, usize, usize, &Vector, f64) -> Vector,
+        value: impl Fn(&Self, usize, usize, &Vector, Option<f64>) -> Vector,
     ) {
         if self.traction_offset.is_empty() {
             return;
@@ -314,10 +314,8 @@ impl SolidMomentum {
             for f in p.faces() {
                 let n = geom.face_normals[f];
                 let area_ratio = match &self.conditions[pi] {
-                    PatchCondition::LinearisedContact(lc) => {
-                        lc.area_ratio.get(f - p.start).copied().unwrap_or(0.0)
-                    }
-                    _ => 0.0,
+                    PatchCondition::LinearisedContact(lc) => lc.moved_area_ratio(f - p.start),
+                    _ => None,
                 };
                 let v = value(self, f - ni, mesh.owner[f] as usize, &n, area_ratio);
                 self.traction_offset[f - ni] = v;
@@ -336,7 +334,7 @@ impl SolidMomentum {
             let (t_b, ratio) = m.face_traction(o, &grad_b, n);
             // per current area as the traction was applied: a contact
             // face's over the moved surface's area
-            let ratio = if area_ratio > 0.0 { area_ratio } else { ratio };
+            let ratio = area_ratio.unwrap_or(ratio);
             let t = (t_b + m.offset_at(b, &grad_b)) / ratio;
             if t.iter().all(|v| v.is_finite()) {
                 t
@@ -785,11 +783,9 @@ impl SolidMomentum {
                     }
                     PatchCondition::LinearisedContact(lc) => {
                         let i = f - p.start;
-                        let ratio = lc.area_ratio.get(i).copied().unwrap_or(0.0);
-                        let mag = if ratio > 0.0 {
-                            ratio * geom.face_mag[f]
-                        } else {
-                            current_mag()
+                        let mag = match lc.moved_area_ratio(i) {
+                            Some(r) => r * geom.face_mag[f],
+                            None => current_mag(),
                         };
                         lc.traction_at(i, &self.u_b[b]) * mag
                     }

@@ -114,10 +114,10 @@ fn full_slide_global_friction_and_smoothness() {
 
 /// Master and slave swapped (block arc master), the full case; the same
 /// acceptance as [`full_slide_global_friction_and_smoothness`]. Measured
-/// (Rhie–Chow 0.5, boundary-face state): runs to the end, oscillation
-/// 0.661 % (passes), but μ_g(1.5) = 0.2968, just under the band
-/// (foundation master 0.3055): FAILS; 349 s with the foundation-master
-/// test alongside.
+/// (Rhie–Chow 0.5, contact springs per current area, path-following
+/// predictor): runs to the end, oscillation 0.463 % (passes), but
+/// μ_g(1.5) = 0.2989, just under the band (foundation master 0.3090):
+/// FAILS; 305 s with `fvc`. Before those changes: 0.2968 and 0.661 %.
 #[test]
 #[ignore]
 fn full_slide_block_master() {

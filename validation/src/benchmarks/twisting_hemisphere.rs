@@ -35,8 +35,9 @@ pub enum MeshSource {
 }
 
 impl MeshSource {
-    /// (case file, master, slave, vertical force column, moment column).
-    fn names(self) -> [&'static str; 5] {
+    /// (case file, master, slave, vertical force column, moment column,
+    /// vertical force column of the block's fixed base).
+    fn names(self) -> [&'static str; 6] {
         match self {
             MeshSource::Generated => [
                 "case.toml",
@@ -44,6 +45,7 @@ impl MeshSource {
                 "hemisphere/outer",
                 "hemisphere/zmax:Fz",
                 "hemisphere/zmax:Mz",
+                "block/zmin:Fz",
             ],
             MeshSource::Benchmark => [
                 "case-polymesh.toml",
@@ -51,6 +53,7 @@ impl MeshSource {
                 "hemisphere/sphere-contact",
                 "hemisphere/sphere-displacement:Fy",
                 "hemisphere/sphere-displacement:My",
+                "block/block-fixed:Fy",
             ],
         }
     }
@@ -95,6 +98,9 @@ pub struct Twist {
     pub time: Vec<f64>,
     /// Vertical reaction on the hemisphere's top annulus, N (upwards positive).
     pub force: Vec<f64>,
+    /// Vertical reaction on the block's fixed base, N (upwards positive):
+    /// equal to `force` when the contact transmits what it computes.
+    pub base_force: Vec<f64>,
     /// Twisting torque about the vertical axis, N·mm (magnitude).
     pub torque: Vec<f64>,
     /// Outer iterations of each increment.
@@ -185,7 +191,7 @@ pub fn case_text(opts: &Options) -> String {
 /// Runs the case with `opts`; `shared` (`../shared`) is needed for
 /// [`MeshSource::Benchmark`] only.
 pub fn run(shared: Option<&Path>, opts: &Options) -> Result<Twist, String> {
-    let [_, _, _, force_column, moment_column] = opts.mesh.names();
+    let [_, _, _, force_column, moment_column, base_column] = opts.mesh.names();
     let (out, history) = match opts.mesh {
         MeshSource::Generated => run_toml_in_with_history(
             &case_text(opts),
@@ -202,6 +208,7 @@ pub fn run(shared: Option<&Path>, opts: &Options) -> Result<Twist, String> {
     Ok(Twist {
         time: history.column("time"),
         force: history.column(force_column).iter().map(|f| -f).collect(),
+        base_force: history.column(base_column),
         torque: history
             .column(moment_column)
             .iter()

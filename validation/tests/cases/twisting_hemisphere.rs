@@ -82,6 +82,15 @@ fn indentation_force_against_sauer_de_lorenzis() {
     // frictionless and axisymmetric: the moment is round-off (F_z · 1 mm
     // is the scale of a twisting moment)
     assert!(m.abs() < 1e-3 * f, "M = {m} N·mm with F_z = {f} N");
+    // the block's base carries what the hemisphere's top carries: the
+    // contact transmits the force it computes (0.86 % apart when the
+    // traction was carried over the face gradients' areas)
+    for (t, (top, base)) in r.time.iter().zip(r.force.iter().zip(&r.base_force)) {
+        assert!(
+            (base / top - 1.0).abs() < 1e-4,
+            "t = {t}: hemisphere top {top} N, block base {base} N"
+        );
+    }
     match shared_dir().map(|s| references(&s)) {
         Some(Ok(refs)) => {
             let fr = refs.force.at(0.0);

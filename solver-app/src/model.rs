@@ -123,6 +123,9 @@ pub struct Body {
     pub offset: usize,
     /// Face centres at the start (for rigid motions), boundary faces only.
     pub initial_face_centres: Vec<Vector>,
+    /// Diagonal of the bounding box of the initial mesh points: the body's
+    /// length scale.
+    pub extent: f64,
     /// The condition spec of every patch (`None` = traction-free).
     pub patch_specs: Vec<Option<BoundarySpec>>,
     /// Motion of a rigid body at the current time: translation, rotation
@@ -252,20 +255,11 @@ impl Body {
     /// one time to another is the direction of the loading path (used by
     /// the linear predictor, [`crate::predictor`]).
     pub fn prescribed_values(&self, t: f64, kinematic: &mut Vec<f64>, loads: &mut Vec<f64>) {
-        // the extent of the boundary: rotation and translation weigh alike
-        let size = || {
-            let mut lo = Vector::repeat(f64::INFINITY);
-            let mut hi = Vector::repeat(f64::NEG_INFINITY);
-            for x in &self.initial_face_centres {
-                lo = lo.inf(x);
-                hi = hi.sup(x);
-            }
-            let d = (hi - lo).norm();
-            if d.is_finite() {
-                d
-            } else {
-                1.0
-            }
+        // rotation weighed by the body's extent, like a translation
+        let size = if self.extent.is_finite() && self.extent > 0.0 {
+            self.extent
+        } else {
+            1.0
         };
         for spec in self.patch_specs.iter().flatten() {
             match spec {
@@ -278,8 +272,7 @@ impl Body {
                     let (tr, rot, _) = rigid_motion_at(translation.as_ref(), rotation.as_ref(), t);
                     kinematic.extend(tr.iter());
                     if rotation.is_some() {
-                        let l = size();
-                        kinematic.extend((rot - Tensor::identity()).iter().map(|x| x * l));
+                        kinematic.extend((rot - Tensor::identity()).iter().map(|x| x * size));
                     }
                 }
                 BoundarySpec::Traction { value } | BoundarySpec::Force { value } => {
@@ -516,6 +509,14 @@ fn build_body(
         .collect();
     let ni = mesh.n_internal_faces();
     let initial_face_centres = geom.face_centres[ni..].to_vec();
+    let (lo, hi) = mesh.points.iter().fold(
+        (
+            Vector::repeat(f64::INFINITY),
+            Vector::repeat(f64::NEG_INFINITY),
+        ),
+        |(lo, hi), p| (lo.inf(p), hi.sup(p)),
+    );
+    let extent = (hi - lo).norm();
     Ok(Body {
         name: spec.name.clone(),
         index: bi,
@@ -525,6 +526,7 @@ fn build_body(
         rigid: spec.rigid,
         offset,
         initial_face_centres,
+        extent,
         patch_specs,
         rigid_motion: (Vector::zeros(), Tensor::identity(), Vector::zeros()),
         mesh_motion,

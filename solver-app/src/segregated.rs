@@ -201,16 +201,10 @@ impl SegregatedSolver {
             n = n.max(b.offset + b.mesh.n_cells);
         }
         let (matrix, slots) = CsrMatrix::from_faces(n, &owner, &neighbour);
-        let mut length_scale = f64::MIN_POSITIVE;
-        for b in bodies {
-            let mut lo = Vector::repeat(f64::INFINITY);
-            let mut hi = Vector::repeat(f64::NEG_INFINITY);
-            for p in &b.mesh.points {
-                lo = lo.inf(p);
-                hi = hi.sup(p);
-            }
-            length_scale = length_scale.max((hi - lo).norm());
-        }
+        let length_scale = bodies
+            .iter()
+            .map(|b| b.extent)
+            .fold(f64::MIN_POSITIVE, f64::max);
         SegregatedSolver {
             matrices: vec![matrix],
             component_matrix: [Some(0), Some(0), Some(0)],

@@ -221,6 +221,7 @@ impl Body {
         }
         if let Some(op) = &mut self.mesh_motion {
             self.momentum.hold_face_tractions(&self.mesh, &self.geom);
+            self.momentum.carry_stabilisation(&self.mesh, &self.geom);
             let (du, du_b) = self.momentum.increment();
             op.interpolate(du, du_b, &mut self.point_du);
             if let Some(w) = &self.wedge_points {

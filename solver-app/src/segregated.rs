@@ -218,6 +218,7 @@ impl SegregatedSolver {
             n,
             params: MomentumParams {
                 rhie_chow: settings.rhie_chow,
+                rhie_chow_history: settings.rhie_chow_history,
             },
             relaxation: settings.relaxation,
             tolerance: settings.tolerance,

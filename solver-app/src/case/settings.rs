@@ -1,5 +1,6 @@
 //! `[analysis]`, `[time]`, `[solver]` and `[output]`.
 
+use fv_discretise::RhieChowHistory;
 use std::path::PathBuf;
 
 use super::reader::{fmt_num, Res, Table};
@@ -175,6 +176,9 @@ pub struct SolverSettings {
     pub linear: LinearSettings,
     /// Rhie–Chow coefficient α_RC (>= 0, default 0.1).
     pub rhie_chow: f64,
+    /// What the Rhie–Chow term acts on under large strain (default the
+    /// increment, as the thesis).
+    pub rhie_chow_history: RhieChowHistory,
     /// Outer-iteration acceleration (default none).
     pub acceleration: Acceleration,
     /// Iterates mixed by Anderson acceleration (1–20, default 5).
@@ -193,6 +197,7 @@ impl Default for SolverSettings {
             on_nonconvergence: OnNonConvergence::Abort,
             linear: LinearSettings::default(),
             rhie_chow: 0.1,
+            rhie_chow_history: RhieChowHistory::Incremental,
             acceleration: Acceleration::None,
             acceleration_depth: 5,
             predictor: Predictor::None,
@@ -366,6 +371,7 @@ pub(crate) fn solver(t: &Table<'_>, defaults: &SolverSettings) -> Res<SolverSett
         "on_nonconvergence",
         "linear",
         "rhie_chow",
+        "rhie_chow_history",
         "acceleration",
         "acceleration_depth",
         "predictor",
@@ -396,6 +402,15 @@ pub(crate) fn solver(t: &Table<'_>, defaults: &SolverSettings) -> Res<SolverSett
         linear,
         rhie_chow: t.opt("rhie_chow", d.rhie_chow, |n| {
             n.f64_if(|x| x >= 0.0, "be >= 0")
+        })?,
+        rhie_chow_history: t.opt("rhie_chow_history", d.rhie_chow_history, |n| {
+            n.choice(
+                "Rhie–Chow history",
+                &[
+                    ("incremental", RhieChowHistory::Incremental),
+                    ("accumulated", RhieChowHistory::Accumulated),
+                ],
+            )
         })?,
         acceleration: t.opt("acceleration", d.acceleration, |n| {
             n.choice(

@@ -57,6 +57,10 @@ fn defaults() {
     assert_eq!(c.solver.linear.tolerance, 0.1);
     assert_eq!(c.solver.linear.max_iterations, 500);
     assert_eq!(c.solver.rhie_chow, 0.1);
+    assert_eq!(
+        c.solver.rhie_chow_history,
+        fv_discretise::RhieChowHistory::Incremental
+    );
     assert_eq!(c.solver, SolverSettings::default());
     assert_eq!(c.output.directory, PathBuf::from("results"));
     assert_eq!(c.output.every, 1);
@@ -110,6 +114,7 @@ max_outer = 300
 relaxation = 0.7
 on_nonconvergence = "continue"
 rhie_chow = 0
+rhie_chow_history = "accumulated"
 acceleration = "anderson"
 acceleration_depth = 8
 predictor = "linear"
@@ -142,6 +147,7 @@ every = 5
                 max_iterations: 50
             },
             rhie_chow: 0.0,
+            rhie_chow_history: fv_discretise::RhieChowHistory::Accumulated,
             acceleration: Acceleration::Anderson,
             acceleration_depth: 8,
             predictor: Predictor::Linear,
@@ -150,7 +156,13 @@ every = 5
     assert_eq!(c.bodies[0].material.rho, Some(7800.0));
     assert_eq!(c.output.directory, PathBuf::from("out/dir"));
     assert_eq!(c.output.every, 5);
-    assert_eq!(c.source.line_of("solver.linear.method"), Some(19));
+    assert_eq!(c.source.line_of("solver.linear.method"), Some(20));
+    let e = fail(&text.replace("\"accumulated\"", "\"total\""));
+    assert_eq!(e.key.as_deref(), Some("solver.rhie_chow_history"));
+    assert!(
+        e.message.contains("\"incremental\", \"accumulated\""),
+        "{e}"
+    );
 
     let direct = text.replace("bicgstab-ilu", "direct");
     assert_eq!(parse(&direct).solver.linear.method, LinearMethod::Direct);

@@ -137,6 +137,23 @@ impl Twist {
         self.time.last().copied().unwrap_or(0.0)
     }
 
+    /// The worst relative miss of F_z on `reference` over the increments of
+    /// the twist (t ≥ 1), and its angle; NaN when the run never got there.
+    pub fn worst_force_error(&self, reference: &ReferenceCurve) -> (f64, f64) {
+        self.time
+            .iter()
+            .zip(&self.force)
+            .filter(|(t, _)| **t >= 1.0 - 1e-9)
+            .map(|(t, f)| (angle_of(*t), f / reference.at(angle_of(*t)) - 1.0))
+            .fold((f64::NAN, f64::NAN), |w, x| {
+                if w.1.is_nan() || x.1.abs() > w.1.abs() || x.1.is_nan() {
+                    x
+                } else {
+                    w
+                }
+            })
+    }
+
     /// Mean outer iterations per increment over `t0 < t ≤ t1`.
     pub fn mean_outer(&self, t0: f64, t1: f64) -> f64 {
         let n: Vec<usize> = self

@@ -113,8 +113,9 @@ fn indentation_force_against_sauer_de_lorenzis() {
 }
 
 /// Runs `opts` and checks the benchmark's acceptance: the run completes
-/// 180°, the plateau torque (mean over 120–179°, where the Sauer–De Lorenzis curve ends) within 5 % and F_z
-/// (at 0°, 90°, 180°) within 3 % of Sauer–De Lorenzis.
+/// 180°, the plateau torque (mean over 120–179°, where the Sauer–De
+/// Lorenzis curve ends) within 5 % and F_z at every increment of the twist
+/// within 3 % of Sauer–De Lorenzis.
 fn full_case(label: &str, opts: &Options) {
     let Some(shared) = shared_dir() else {
         eprintln!("skipped: ../shared is absent");
@@ -159,30 +160,31 @@ fn full_case(label: &str, opts: &Options) {
         (plateau / plateau_ref - 1.0).abs() < TORQUE_TOLERANCE,
         "plateau torque {plateau} against {plateau_ref}"
     );
-    for deg in [0.0, 90.0, 180.0] {
-        let (f, _) = r.at_angle(deg);
-        let fr = refs.force.at(deg);
-        assert!(
-            (f / fr - 1.0).abs() < FORCE_TOLERANCE,
-            "F_z at {deg}°: {f} against {fr}"
-        );
-    }
+    // F_z at every increment of the twist
+    let worst = r.worst_force_error(&refs.force);
+    eprintln!(
+        "  F_z against Sauer–De Lorenzis over the twist: worst {:+.2} % at {:.0}°",
+        100.0 * worst.1,
+        worst.0
+    );
+    assert!(
+        worst.1.abs() < FORCE_TOLERANCE, // (false when NaN)
+        "F_z {:+.2} % at {:.0}°",
+        100.0 * worst.1,
+        worst.0
+    );
 }
 
-/// The full case as shipped (generated mesh, block master, Rhie–Chow 1,
-/// accumulated slip). Measured: runs to 180° (100 increments, ~100 s).
-/// F_z = 12.38 N at 0° (+0.7 % on Sauer–De Lorenzis), 12.18 N at 80°
-/// (−4.3 %), 12.42 N at 180° (−3.7 %) where the reference rises to
-/// 12.9 N; plateau torque 4.085 N·mm (120–179°), +1.0 % (FEBio 4.07).
-/// FAILS on F_z at 90° and 180° (3 %). Most of the miss is creep: the
-/// indentation held for ten increments without twisting loses 1.7 % of
-/// F_z (0.8 % in the first), and the first 20° of twist lose 2.1 %. Before the boundary faces kept
-/// their own material state (`fv_discretise::SolidMomentum`), every
-/// increment re-derived the stress of the block's fixed base and of the
-/// rim from the owner cells: F_z fell to 11.5 N (−10 %) within the first
-/// 20°, also when the indentation was only held, the plateau torque was
-/// −8 %, and F_z at 1 mm depended on the number of increments (12.23 N
-/// with 10, 11.93 N with 40; now 12.44 and 12.31 N).
+/// The full case as shipped (generated mesh, block master, accumulated
+/// Rhie–Chow stabilisation at α_RC = 0.1, accumulated slip). Measured:
+/// runs to 180° (100 increments, 282 outer iterations per increment,
+/// ~150 s with another run beside it). F_z = 12.20 N at 0° (−0.8 % on
+/// Sauer–De Lorenzis), within −0.5 to −2.5 % over the whole twist (worst
+/// −2.54 % at 156°), 12.58 N at 180° (−2.4 %); plateau torque 4.103 N·mm
+/// (120–179°), +1.4 % (FEBio 4.07). With the stabilisation of the
+/// increment alone at α_RC = 1 (the case before): F_z fell to −4.3 % at 80°
+/// and −3.7 % at 180° where the reference rises, the held indentation lost
+/// 1.7 % in ten increments; plateau torque +1.0 %.
 #[test]
 #[ignore]
 fn full_twist_block_master() {
@@ -190,9 +192,10 @@ fn full_twist_block_master() {
 }
 
 /// Master and slave swapped (hemisphere master); the same acceptance.
-/// Measured (with `fvc` on the swapped case file): runs to 180° (~100 s
-/// alone); F_z +0.8 % at 0°, −4.9 % at 80°, −4.0 % at 180°; plateau
-/// torque 4.103 N·mm, +1.4 %. FAILS on F_z, as [`full_twist_block_master`].
+/// Measured: runs to 180° (~130 s beside another run); F_z −1.3 % at 0°,
+/// −3.0 % at 90° and 180°, worst −3.14 % at 78° (over 3 % from 70° to
+/// 88° and near 180°); plateau torque 4.115 N·mm, +1.7 %. FAILS on F_z by
+/// 0.14 %. (Increment alone, α_RC = 1: −4.9 % at 80°, torque +1.4 %.)
 #[test]
 #[ignore]
 fn full_twist_hemisphere_master() {
@@ -206,8 +209,10 @@ fn full_twist_hemisphere_master() {
 }
 
 /// The full case on the benchmark's coarse polyMesh. Measured: runs to
-/// 180°; F_z +1.4 % at 0°, −3.6 % at 80°, −2.2 % at 180°; plateau torque
-/// 4.148 N·mm, +2.6 %. FAILS on F_z at 90° (−3.3 %; 3 % asked).
+/// 180° (291 outer iterations per increment, ~160 s beside another run);
+/// F_z −0.5 % at 0°, worst −2.18 % at 78°, −1.9 % at 180°; plateau torque
+/// 4.143 N·mm, +2.4 %. (Increment alone, α_RC = 1: F_z −3.6 % at 80°,
+/// torque +2.6 %.)
 #[test]
 #[ignore]
 fn full_twist_benchmark_mesh() {

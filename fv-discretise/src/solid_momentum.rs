@@ -37,8 +37,8 @@
 //! body had, and a body that flows far from it fights them (die drawing
 //! stops at 0.04 of 0.25 m).
 //!
-//! With inertia (3.11) the cell balance gains −m_P ü_P (backward Euler, the mass
-//! m_P = ρ_P Ω_P conserved) and the matrix diagonal m_P/Δt².
+//! With inertia (3.11) the cell balance gains −m_P ü_P (backward Euler, the
+//! mass m_P = ρ_P Ω_P conserved) and the matrix diagonal m_P/Δt².
 use crate::stress_law::current_area_vector;
 use crate::{LeastSquaresGradient, PatchCondition, StressLaw};
 use fv_materials::{updated_lagrangian_stress, MaterialState};
@@ -212,10 +212,10 @@ pub struct SolidMomentum {
     pub face_force: Vec<Vector>,
     /// Force residual F_P of every cell.
     pub residual: Vec<Vector>,
-    /// Updated Lagrangian only, per internal face, with
+    /// Updated Lagrangian only, per internal face, used with
     /// [`RhieChowHistory::Accumulated`]: the Rhie–Chow force of the current
-    /// increment (of the latest residual evaluation), and the
-    /// sum of those of the committed increments, carried with the material
+    /// increment (of the latest residual evaluation), and the sum of those
+    /// of the committed increments, carried with the material
     /// ([`Self::carry_stabilisation`]; see the module documentation).
     rc_increment: Vec<Vector>,
     rc_carried: Vec<Vector>,
@@ -392,10 +392,10 @@ impl SolidMomentum {
 
     /// End of a converged increment, before the mesh moves (updated
     /// Lagrangian, [`RhieChowHistory::Accumulated`]; a no-op otherwise, the
-    /// increment's force staying zero): the increment's Rhie–Chow force joins the carried
-    /// ones, which turn and stretch with their face, c_f ← f_f·c_f + rc_f —
-    /// the force the converged residual applied, so that the next increment
-    /// starts in balance (module documentation).
+    /// increment's force staying zero): the increment's Rhie–Chow force
+    /// joins the carried ones, which turn and stretch with their face,
+    /// c_f ← f_f·c_f + rc_f — the force the converged residual applied, so
+    /// that the next increment starts in balance (module documentation).
     pub fn carry_stabilisation(&mut self, mesh: &PolyMesh, geom: &MeshGeometry) {
         for (f, (c, rc)) in self
             .rc_carried

@@ -213,7 +213,9 @@ impl Section for ConcentricSpheresSection {
             "Hollow neo-Hookean half-spheres (r 10–12 inside r 12–14 mm, E = 1 MPa, \
              ν = 0.3) on a rigid plane, the outer one pushed at its pole by a rigid plate \
              9 mm in 90 increments; quarter model with symmetry planes; implicit coupling, \
-             `penalty_scale = 1`, Rhie–Chow 1 (`validation/cases/concentric-spheres`, \
+             `penalty_scale = 1`; the coarse case with the Rhie–Chow stabilisation \
+             (α_RC = 0.1) of the accumulated displacement, the fine one with Rhie–Chow 1 \
+             of the increment (`validation/cases/concentric-spheres`, \
              generated meshes: coarse inner 540 / outer 192 cells, fine 2,400 / 1,500). \
              References: Abaqus, FEBio, Areias and Puso–Laursen as stored in \
              `../shared/benchmarks/concentric-spheres/reference`, mapped to u_z in mm and \

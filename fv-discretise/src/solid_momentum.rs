@@ -212,11 +212,12 @@ pub struct SolidMomentum {
     pub face_force: Vec<Vector>,
     /// Force residual F_P of every cell.
     pub residual: Vec<Vector>,
-    /// Updated Lagrangian only, per internal face, used with
-    /// [`RhieChowHistory::Accumulated`]: the Rhie–Chow force of the current
-    /// increment (of the latest residual evaluation), and the sum of those
-    /// of the committed increments, carried with the material
-    /// ([`Self::carry_stabilisation`]; see the module documentation).
+    /// Updated Lagrangian with [`RhieChowHistory::Accumulated`] only, per
+    /// internal face (empty otherwise; sized by the first residual that
+    /// carries): the Rhie–Chow force of the current increment (of the
+    /// latest residual evaluation), and the sum of those of the committed
+    /// increments, carried with the material ([`Self::carry_stabilisation`];
+    /// see the module documentation).
     rc_increment: Vec<Vector>,
     rc_carried: Vec<Vector>,
     /// Body force per unit volume ρb (eq. 3.18), per cell; empty = none.
@@ -273,8 +274,8 @@ impl SolidMomentum {
             face_force: vec![Vector::zeros(); nb],
             residual: vec![Vector::zeros(); nc],
             body_force: Vec::new(),
-            rc_increment: vec![Vector::zeros(); ul_len(ni)],
-            rc_carried: vec![Vector::zeros(); ul_len(ni)],
+            rc_increment: Vec::new(),
+            rc_carried: Vec::new(),
         };
         s.update_geometry(mesh, geom);
         s
@@ -392,7 +393,7 @@ impl SolidMomentum {
 
     /// End of a converged increment, before the mesh moves (updated
     /// Lagrangian, [`RhieChowHistory::Accumulated`]; a no-op otherwise, the
-    /// increment's force staying zero): the increment's Rhie–Chow force
+    /// carried forces being empty): the increment's Rhie–Chow force
     /// joins the carried ones, which turn and stretch with their face,
     /// c_f ← f_f·c_f + rc_f — the force the converged residual applied, so
     /// that the next increment starts in balance (module documentation).
@@ -811,6 +812,11 @@ impl SolidMomentum {
         let mut rc_increment = std::mem::take(&mut self.rc_increment);
         let alpha = params.rhie_chow;
         let carry = ul && params.rhie_chow_history == RhieChowHistory::Accumulated;
+        if carry && self.rc_carried.len() != ni {
+            // once per body: nothing is carried before the first residual
+            self.rc_carried = vec![Vector::zeros(); ni];
+            rc_increment = vec![Vector::zeros(); ni];
+        }
         let sig_cells: &[Tensor] = if ul { &self.sigma_hat } else { &self.sigma };
         let (u_inc, _) = self.increment();
         for f in 0..ni {

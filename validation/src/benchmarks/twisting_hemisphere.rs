@@ -138,20 +138,20 @@ impl Twist {
     }
 
     /// The worst relative miss of F_z on `reference` over the increments of
-    /// the twist (t ≥ 1), and its angle; NaN when the run never got there.
+    /// the twist (t ≥ 1) and its angle, (angle, miss); NaN when the run never
+    /// got there or a force was not finite.
     pub fn worst_force_error(&self, reference: &ReferenceCurve) -> (f64, f64) {
         self.time
             .iter()
             .zip(&self.force)
             .filter(|(t, _)| **t >= 1.0 - 1e-9)
             .map(|(t, f)| (angle_of(*t), f / reference.at(angle_of(*t)) - 1.0))
-            .fold((f64::NAN, f64::NAN), |w, x| {
-                if w.1.is_nan() || x.1.abs() > w.1.abs() || x.1.is_nan() {
-                    x
-                } else {
-                    w
-                }
+            // a NaN miss sticks: it is the worst
+            .fold(None, |w: Option<(f64, f64)>, x| match w {
+                Some(w) if w.1.is_nan() || (!x.1.is_nan() && w.1.abs() >= x.1.abs()) => Some(w),
+                _ => Some(x),
             })
+            .unwrap_or((f64::NAN, f64::NAN))
     }
 
     /// Mean outer iterations per increment over `t0 < t ≤ t1`.

@@ -164,6 +164,11 @@ pub struct SolidMomentum {
     pub u: Vec<Vector>,
     /// Boundary-face displacement (total; index face − n_internal_faces).
     pub u_b: Vec<Vector>,
+    /// Directions the solver does not solve (the out-of-plane axis of a 2-D
+    /// model, the circumferential axis of an axisymmetric wedge): the
+    /// boundary values of every patch but the wedge planes keep no
+    /// component along them. Set by the solver; all false by default.
+    pub unsolved: [bool; 3],
     /// Total displacement at the start of the increment, cells and boundary
     /// faces (updated Lagrangian only; empty otherwise).
     u_old: Vec<Vector>,
@@ -257,6 +262,7 @@ impl SolidMomentum {
             inertia: None,
             u: vec![Vector::zeros(); nc],
             u_b: vec![Vector::zeros(); nb],
+            unsolved: [false; 3],
             u_old: vec![Vector::zeros(); ul_len(nc)],
             u_b_old: vec![Vector::zeros(); ul_len(nb)],
             du: vec![Vector::zeros(); ul_len(nc)],
@@ -654,6 +660,22 @@ impl SolidMomentum {
                     }
                 };
                 self.u_b[b] = u_b;
+                // a face off the wedge planes lies on the wedge mid-plane (or
+                // in the plane of a 2-D model), where a displacement along an
+                // unsolved direction is zero: a traction-type condition
+                // whose normal tilts out of that plane (a contact face whose
+                // wedge-plane points moved apart) would otherwise give it
+                // one, the cell-to-point fit would pass it to the points of
+                // the two wedge planes with opposite signs, and the tilt
+                // would grow (die drawing with the cylinder as master)
+                if !matches!(cond, PatchCondition::Wedge(_)) {
+                    for (c, &off) in self.unsolved.iter().enumerate() {
+                        if off {
+                            self.u_b[b][c] = 0.0;
+                            self.snd_b[b][c] = 0.0;
+                        }
+                    }
+                }
             }
         }
         if self.law.is_updated_lagrangian() {

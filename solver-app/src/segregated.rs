@@ -498,8 +498,9 @@ impl SegregatedSolver {
     /// Records the displacement at the start of an increment (the reference
     /// of the relative residual).
     pub fn begin_increment(&mut self, bodies: &mut [Body]) {
-        for b in bodies.iter().filter(|b| !b.rigid) {
+        for b in bodies.iter_mut().filter(|b| !b.rigid) {
             self.u_start[b.offset..b.offset + b.mesh.n_cells].copy_from_slice(&b.momentum.u);
+            b.momentum.unsolved = self.unsolved;
         }
         if let Some(p) = &self.predictor {
             for b in bodies.iter_mut().filter(|b| !b.rigid) {

@@ -28,13 +28,11 @@ fn report(r: &DieRun) {
     );
 }
 
-/// The whole 0.25 m pull as shipped (100 increments, ~30 s): the force
-/// over 0.18–0.25 m is 620.4–629.3 N, mean 621.6 N, −2.9 % against eq.
-/// 5.1 (the thesis reports +5 %), spread 1.4 % (the first increment of the
-/// window still holds the end of the drop past the die exit).
-#[test]
-fn die_drawing_force_levels_off_within_three_percent_of_eq_5_1() {
-    let r = run("case.toml", STEADY.1, false);
+/// The whole pull with the die (`swapped` false) or the cylinder as
+/// master: runs to the end with the wedge kept a wedge, and the steady
+/// force over 0.18–0.25 m within 3 % of eq. 5.1 and spread under 2 %.
+fn full_pull_levels_off_within_three_percent(swapped: bool) {
+    let r = run("case.toml", FULL_PULL, swapped);
     report(&r);
     assert!(r.converged, "{:?}", r.failure);
     // the wedge keeps its shape under the mesh motion (WedgePointConstraint)
@@ -67,22 +65,23 @@ fn die_drawing_force_levels_off_within_three_percent_of_eq_5_1() {
     );
 }
 
-/// The full 0.25 m pull, either side master: the steady force over
-/// 0.18–0.25 m within 3 % of eq. 5.1. Fails today on the swapped side:
-/// the die as master passes (the default test), with the cylinder as
-/// master increment 59 (0.1475 m) diverges (non-finite residual). See the
-/// case README.
+/// The whole 0.25 m pull as shipped (100 increments, ~30 s): the force
+/// over 0.18–0.25 m is 620.4–629.3 N, mean 621.6 N, −2.94 % against eq.
+/// 5.1 (the thesis reports +5 %), spread 1.4 % (the first increment of the
+/// window still holds the end of the drop past the die exit).
 #[test]
-#[ignore = "with the cylinder as master the run stops at 0.1475 m (README.md); ~1 min per side"]
-fn die_drawing_full_pull_either_side_master() {
-    for swapped in [false, true] {
-        let r = run("case.toml", FULL_PULL, swapped);
-        report(&r);
-        assert!(r.converged, "{:?}", r.failure);
-        let Some((mean, _)) = r.mean_force(0.18, 0.25) else {
-            panic!("the steady window was not reached")
-        };
-        let error = mean / analytical_force() - 1.0;
-        assert!(error.abs() < 0.03, "steady force {mean} ({error:+})");
-    }
+fn die_drawing_force_levels_off_within_three_percent_of_eq_5_1() {
+    full_pull_levels_off_within_three_percent(false);
+}
+
+/// Master and slave swapped (the cylinder as master, the rigid die as
+/// slave). Measured: 620.0–628.4 N over the window, mean 621.2 N, −3.00 %;
+/// 1,645 outer iterations per increment, 34 s. It used to stop at
+/// 0.1475 m: the contact faces' boundary values took a circumferential
+/// component along their tilted normals, which the cell-to-point fit
+/// passed to the points of the two wedge planes with opposite signs,
+/// tilting the faces further (`SolidMomentum::unsolved`).
+#[test]
+fn die_drawing_cylinder_master() {
+    full_pull_levels_off_within_three_percent(true);
 }

@@ -207,7 +207,7 @@ impl Section for TwistingHemisphereSection {
             "A hollow neo-Hookean hemisphere pushed 1 mm onto a block without friction \
              (pseudo-time 0–1, 10 increments), then twisted 180° about the vertical axis \
              with μ = 0.5 (1–10, 90 increments); generated meshes, implicit coupling, \
-             `penalty_scale = 1`, the Rhie–Chow stabilisation (α_RC = 0.1) of the \
+             `penalty_scale = 1`, the Rhie–Chow stabilisation (α_RC = 0.2) of the \
              accumulated displacement \
              (`validation/cases/twisting-hemisphere/case.toml`). References: Sauer–De \
              Lorenzis (2015) F_z and M_z (stored × 1/10) and FEBio's M_z, from \

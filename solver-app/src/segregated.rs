@@ -496,7 +496,8 @@ impl SegregatedSolver {
     }
 
     /// Records the displacement at the start of an increment (the reference
-    /// of the relative residual).
+    /// of the relative residual) and tells every body which directions are
+    /// not solved (`SolidMomentum::unsolved`).
     pub fn begin_increment(&mut self, bodies: &mut [Body]) {
         for b in bodies.iter_mut().filter(|b| !b.rigid) {
             self.u_start[b.offset..b.offset + b.mesh.n_cells].copy_from_slice(&b.momentum.u);

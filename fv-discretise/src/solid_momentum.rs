@@ -553,6 +553,43 @@ impl SolidMomentum {
         }
     }
 
+    /// Adds to `rhs` (component c, one entry per cell) the boundary source
+    /// of the step of the prescribed displacements from the current
+    /// boundary values to the refreshed conditions: K|Γ|/|d_n| (Δu_b)_c of
+    /// every `displacement` face, and K|Γ|/|d_n| n_c n·Δu_b of every
+    /// `normal-displacement` face, at its owner cell. With the implicit
+    /// Laplacian (the matrix of eq. 3.29 with [`Self::add_boundary_diagonal`])
+    /// it gives the harmonic extension of the boundary step into the cells;
+    /// returns whether any face has a step.
+    pub fn add_prescribed_step_source(
+        &self,
+        mesh: &PolyMesh,
+        geom: &MeshGeometry,
+        c: usize,
+        rhs: &mut [f64],
+    ) -> bool {
+        let ni = mesh.n_internal_faces();
+        let mut any = false;
+        for (p, cond) in mesh.patches.iter().zip(&self.conditions) {
+            for f in p.faces() {
+                let step = match cond {
+                    PatchCondition::Displacement(v) => v[f - p.start] - self.u_b[f - ni],
+                    PatchCondition::NormalDisplacement(v) => {
+                        let n = geom.face_normals[f];
+                        n * (v[f - p.start] - n.dot(&self.u_b[f - ni]))
+                    }
+                    _ => continue,
+                };
+                if step[c] != 0.0 {
+                    any = true;
+                    let a = self.k * geom.face_mag[f] / self.dn[f];
+                    rhs[mesh.owner[f] as usize] += a * step[c];
+                }
+            }
+        }
+        any
+    }
+
     /// Adds the temporal diagonal m_P/Δt² (eq. 3.11) to `diag` (no-op for
     /// static bodies).
     pub fn add_inertia_diagonal(&self, diag: &mut [f64]) {

@@ -49,7 +49,7 @@ fn outer_iteration(c: &mut Criterion) {
     }
     // a few iterations first so that the linear solves see a typical residual
     let mut contacts = solver_app::contact_coupling::ContactSet::default();
-    solver.begin_increment(&mut bodies);
+    solver.begin_increment(&mut bodies, &contacts);
     let mut linear = 0;
     for _ in 0..10 {
         if let Ok((_, l)) = solver.outer_iteration(&mut bodies, &mut contacts) {

@@ -15,6 +15,10 @@
 //! 0.1 mm further into the block, the contact force jumped 37 % and the
 //! increment diverged and was cut back.
 //!
+//! The first increment has nothing to extrapolate: the solver starts it
+//! from the harmonic extension of the step of the prescribed displacements
+//! instead (`SegregatedSolver::start_from_harmonic_extension`).
+//!
 //! Under the updated Lagrangian form the cells are the same ones, carried
 //! by the mesh, so the change of the last increment is the increment Δu
 //! itself. Only the starting point changes: the converged result is the
@@ -129,6 +133,12 @@ impl LinearPredictor {
         } else {
             0.0
         }
+    }
+
+    /// Whether no increment has been accepted yet (nothing to extrapolate:
+    /// the solver starts from the harmonic extension of the boundary step).
+    pub fn is_empty(&self) -> bool {
+        !self.recorded
     }
 
     /// Adds the extrapolated change to the cells `offset..offset + u.len()`.

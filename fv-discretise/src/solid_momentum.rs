@@ -511,7 +511,8 @@ impl SolidMomentum {
         self.dn[f]
     }
 
-    /// Implicit Laplacian coefficient K|Γ_f|/(d_f·n_f) of internal face f.
+    /// Implicit Laplacian coefficient K|Γ_f|/(d_f·n_f) of face f (a
+    /// boundary face: K|Γ_b|/|d_n|).
     #[inline]
     pub fn face_coefficient(&self, geom: &MeshGeometry, f: usize) -> f64 {
         self.k * geom.face_mag[f] / self.dn[f]
@@ -530,7 +531,7 @@ impl SolidMomentum {
     ) {
         for (p, cond) in mesh.patches.iter().zip(&self.conditions) {
             for f in p.faces() {
-                let a = self.k * geom.face_mag[f] / self.dn[f];
+                let a = self.face_coefficient(geom, f);
                 let o = mesh.owner[f] as usize;
                 let n = geom.face_normals[f];
                 diag[o] += match cond {
@@ -582,7 +583,7 @@ impl SolidMomentum {
                 };
                 if step[c] != 0.0 {
                     any = true;
-                    let a = self.k * geom.face_mag[f] / self.dn[f];
+                    let a = self.face_coefficient(geom, f);
                     rhs[mesh.owner[f] as usize] += a * step[c];
                 }
             }

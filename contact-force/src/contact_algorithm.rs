@@ -47,6 +47,12 @@ pub trait ContactAlgorithm: Send {
     /// Symmetry planes of the master's body, for the point normals of a
     /// smoothed master (thesis Fig. 4.40); ignored without smoothing.
     fn set_symmetry_planes(&mut self, _planes: &[contact_smooth::SymmetryPlane]) {}
+
+    /// Per-face translations of the master and the slave faces for the
+    /// next calls of [`ContactAlgorithm::compute`] ([`crate::FaceShifts`]):
+    /// the gap between two faces is measured with them moved by these.
+    /// Empty slices: none (the surfaces as given).
+    fn set_face_shifts(&mut self, master: &[fv_mesh::Vector], slave: &[fv_mesh::Vector]);
 }
 
 /// The contact algorithms, by case-file name.

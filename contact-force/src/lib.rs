@@ -38,6 +38,7 @@ mod coulomb_friction;
 mod error;
 mod explicit_coupling;
 mod face_pairs;
+mod face_shifts;
 mod ggi;
 mod increment_state;
 mod occluded_volume;
@@ -59,6 +60,7 @@ pub use coulomb_friction::{
 pub use error::ContactError;
 pub use explicit_coupling::{AppliedTraction, Coupling, CouplingInfo, ExplicitRelaxation};
 pub use face_pairs::{all_pairs, check_pairs, swap_pairs, FacePairs};
+pub use face_shifts::FaceShifts;
 pub use ggi::{GgiScratch, GgiWeights};
 pub use occluded_volume::central_integral;
 pub use penalty::{macaulay, normal_pressure, ContactLaw, PenaltyParams, SurfaceMaterial};

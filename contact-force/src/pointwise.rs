@@ -8,6 +8,7 @@ use crate::contact_algorithm::{
 use crate::contact_tractions::{ContactStats, ContactTractions, NO_GAP};
 use crate::coulomb_friction::{face_friction, FrictionState, SlipHistory};
 use crate::face_pairs::{FacePairs, PairsTranspose};
+use crate::face_shifts::FaceShifts;
 use crate::ggi::GgiScratch;
 use crate::increment_state::{face_mean, IncrementState};
 use crate::penalty::{normal_pressure, ContactLaw};
@@ -60,6 +61,11 @@ pub struct Pointwise {
     transpose: PairsTranspose,
     ggi_scratch: GgiScratch,
     point_gap: Vec<Real>,
+    /// Master face of each slave point's foot (`u32::MAX`: none).
+    point_master: Vec<u32>,
+    /// Gaps of the points of one slave face with the face shifts.
+    face_gaps: Vec<Real>,
+    shifts: FaceShifts,
     candidates: Vec<u32>,
     master_du: Vec<Vector>,
     slave_du_hat: Vec<Vector>,
@@ -144,6 +150,8 @@ impl Pointwise {
         self.point_gap.resize(slave.n_points(), NO_GAP);
         self.point_normal.clear();
         self.point_normal.resize(slave.n_points(), Vector::zeros());
+        self.point_master.clear();
+        self.point_master.resize(slave.n_points(), u32::MAX);
         for p in 0..slave.n_points() {
             let x = slave.points[p];
             if !x.iter().all(|v| v.is_finite()) {
@@ -187,6 +195,7 @@ impl Pointwise {
                 }
                 self.point_gap[p] = g;
                 self.point_normal[p] = master.face_normals[m];
+                self.point_master[p] = m as u32;
                 let Some(sm) = self.smoothing.as_ref().filter(|_| smooth) else {
                     continue;
                 };
@@ -201,7 +210,24 @@ impl Pointwise {
         }
     }
 
-    /// Contact fraction of slave face `s` from its point gaps.
+    /// The gaps of the points of slave face `s` into `self.face_gaps`, each
+    /// with the face's shift relative to the master face of the point's foot
+    /// ([`FaceShifts`]; along the master normal there).
+    fn shifted_face_gaps(&mut self, slave: &Surface, s: usize) {
+        self.face_gaps.clear();
+        for &q in slave.face(s) {
+            let q = q as usize;
+            let (g, m) = (self.point_gap[q], self.point_master[q]);
+            self.face_gaps.push(if g.is_finite() && m != u32::MAX {
+                g + self.point_normal[q].dot(&self.shifts.relative(m as usize, s))
+            } else {
+                g
+            });
+        }
+    }
+
+    /// Contact fraction of slave face `s` from its point gaps
+    /// (`self.face_gaps`, [`Self::shifted_face_gaps`]).
     fn slave_fraction(&mut self, slave: &Surface, s: usize) -> Real {
         let Some(plane) = AuxiliaryPlane::of_face(slave, s) else {
             return 0.0;
@@ -209,15 +235,16 @@ impl Pointwise {
         let fp = slave.face(s);
         let k = fp.len();
         let size = slave.face_mag[s].sqrt();
-        let g = |p: u32| {
-            let g = self.point_gap[p as usize];
+        let gaps = &self.face_gaps;
+        let g = |i: usize| {
+            let g = gaps[i];
             if g.is_finite() {
                 g
             } else {
                 size
             }
         };
-        let gc = fp.iter().map(|&p| g(p)).sum::<Real>() / k as Real;
+        let gc = (0..k).map(g).sum::<Real>() / k as Real;
         let c = plane.project(&slave.face_centres[s]);
         let (mut total, mut contact) = (0.0, 0.0);
         for i in 0..k {
@@ -229,7 +256,7 @@ impl Pointwise {
                 plane.project(&slave.points[b as usize]),
             ]);
             self.tri_values.clear();
-            self.tri_values.extend([gc, g(a), g(b)]);
+            self.tri_values.extend([gc, g(i), g((i + 1) % k)]);
             total += signed_area(&self.tri).abs();
             clip_non_positive(
                 &self.tri,
@@ -274,24 +301,26 @@ impl ContactAlgorithm for Pointwise {
 
         // 2: slave normal traction (eq. 4.11), gap, contact fraction
         let mut contact_area = 0.0;
+        let mut max_penetration: Real = 0.0;
         for s in 0..ns {
             if !valid_face(slave, s) {
                 continue;
             }
+            self.shifted_face_gaps(slave, s);
             let fp = slave.face(s);
             let inv = 1.0 / fp.len() as Real;
-            let p = fp
+            let p = self
+                .face_gaps
                 .iter()
-                .map(|&q| normal_pressure(law.normal_penalty, self.point_gap[q as usize]))
+                .map(|&g| normal_pressure(law.normal_penalty, g))
                 .sum::<Real>()
                 * inv;
             let t = if self.smoothing.is_some() {
                 // along the master normal at each foot (smoothed or flat)
                 fp.iter()
-                    .map(|&q| {
-                        let q = q as usize;
-                        self.point_normal[q]
-                            * normal_pressure(law.normal_penalty, self.point_gap[q])
+                    .zip(&self.face_gaps)
+                    .map(|(&q, &g)| {
+                        self.point_normal[q as usize] * normal_pressure(law.normal_penalty, g)
                     })
                     .sum::<Vector>()
                     * inv
@@ -299,11 +328,11 @@ impl ContactAlgorithm for Pointwise {
                 -slave.face_normals[s] * p
             };
             let (mut gsum, mut gn) = (0.0, 0usize);
-            for &q in fp {
-                let g = self.point_gap[q as usize];
+            for &g in &self.face_gaps {
                 if g.is_finite() {
                     gsum += g;
                     gn += 1;
+                    max_penetration = max_penetration.max(-g);
                 }
             }
             if gn > 0 {
@@ -402,11 +431,7 @@ impl ContactAlgorithm for Pointwise {
 
         let mut stats = finish_stats(master, slave, out);
         stats.contact_area = contact_area;
-        stats.max_penetration = self
-            .point_gap
-            .iter()
-            .filter(|g| g.is_finite())
-            .fold(0.0, |a: Real, &g| a.max(-g));
+        stats.max_penetration = max_penetration;
         stats.n_overlapping_pairs = out.ggi.n_pairs();
         Ok(stats)
     }
@@ -417,6 +442,10 @@ impl ContactAlgorithm for Pointwise {
 
     fn reset(&mut self) {
         self.state.reset();
+    }
+
+    fn set_face_shifts(&mut self, master: &[Vector], slave: &[Vector]) {
+        self.shifts.set(master, slave);
     }
 
     fn set_symmetry_planes(&mut self, planes: &[contact_smooth::SymmetryPlane]) {

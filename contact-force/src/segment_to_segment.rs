@@ -7,6 +7,7 @@ use crate::contact_algorithm::{
 use crate::contact_tractions::{ContactStats, ContactTractions};
 use crate::coulomb_friction::{face_friction, SlipHistory};
 use crate::face_pairs::{FacePairs, PairsTranspose};
+use crate::face_shifts::FaceShifts;
 use crate::increment_state::{face_mean, IncrementState};
 use crate::occluded_volume::central_integral;
 use crate::penalty::ContactLaw;
@@ -82,6 +83,7 @@ pub struct SegmentToSegment {
     transpose: PairsTranspose,
     scratch: Scratch,
     acc: Accumulators,
+    shifts: FaceShifts,
 }
 
 #[derive(Debug, Clone, Default)]
@@ -321,8 +323,9 @@ impl SegmentToSegment {
                 if !valid_face(slave, su) {
                     continue;
                 }
-                let Some(gap) = plane.ray_gap(&slave.face_centres[su], &slave.face_normals[su])
-                else {
+                // the slave face at its shift relative to the master face's
+                let centre = slave.face_centres[su] + self.shifts.relative(m, su);
+                let Some(gap) = plane.ray_gap(&centre, &slave.face_normals[su]) else {
                     continue;
                 };
                 // b: slave polygon in face order (for 4.26) and counter-clockwise (for c)
@@ -564,6 +567,10 @@ impl ContactAlgorithm for SegmentToSegment {
 
     fn reset(&mut self) {
         self.state.reset();
+    }
+
+    fn set_face_shifts(&mut self, master: &[Vector], slave: &[Vector]) {
+        self.shifts.set(master, slave);
     }
 
     fn set_symmetry_planes(&mut self, planes: &[contact_smooth::SymmetryPlane]) {

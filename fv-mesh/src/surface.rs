@@ -283,6 +283,12 @@ impl Surface {
         self.point_ids.binary_search(&global).ok().map(|i| i as u32)
     }
 
+    /// Centre of face `f` with its local points at `positions` (one per
+    /// local point), as [`Surface::update_points`] would compute it.
+    pub fn face_centre_at(&self, f: usize, positions: &[Vector]) -> Vector {
+        polygon_centre_area(positions, self.face(f)).0
+    }
+
     /// Total area of the surface.
     pub fn total_area(&self) -> Real {
         self.face_mag.iter().sum()

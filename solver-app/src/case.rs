@@ -27,7 +27,7 @@ mod source;
 mod values;
 
 pub use boundary::{BoundarySpec, BOUNDARY_TYPES};
-pub use contact::{ContactAlgorithm, ContactSpec, Coupling, Detection};
+pub use contact::{ContactAlgorithm, ContactSpec, Coupling, Detection, FacePosition};
 pub use error::InputError;
 pub use material::{MaterialModel, MaterialSpec};
 pub use mesh::{MeshSpec, GENERATORS};

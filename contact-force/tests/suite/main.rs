@@ -4,6 +4,7 @@
 mod common;
 mod curved;
 mod degenerate;
+mod face_shifts;
 mod flat_surfaces;
 mod friction;
 mod tilted;

@@ -37,6 +37,19 @@ pub enum Detection {
     BruteForce,
 }
 
+/// `contact.face_position`: where a contact face is when the gap is
+/// measured (`contact_force::FaceShifts`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FacePosition {
+    /// `"interpolated"`: the face of the surface moved by the cell-to-point
+    /// interpolation (the thesis).
+    Interpolated,
+    /// `"boundary-value"`: that face translated to the face's own boundary
+    /// displacement u_b, the value the momentum equation and the implicit
+    /// coupling act on.
+    BoundaryValue,
+}
+
 /// A contact pair.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ContactSpec {
@@ -68,6 +81,8 @@ pub struct ContactSpec {
     /// `"accumulated"`: also the elastic slip committed at the end of the
     /// previous increment, so a stick traction persists across increments).
     pub slip_history: SlipHistory,
+    /// `face_position`: where a contact face is when the gap is measured.
+    pub face_position: FacePosition,
 }
 
 /// `friction`: μ >= 0, a number or a time table of numbers.
@@ -118,6 +133,7 @@ pub(crate) fn contact(node: &Node<'_>, bodies: &[&str]) -> Res<ContactSpec> {
         "relaxation",
         "detection",
         "slip_history",
+        "face_position",
     ])?;
     let master = t.need("master", |n| body_patch(n, bodies))?;
     let slave_node = t.req("slave")?;
@@ -187,6 +203,15 @@ pub(crate) fn contact(node: &Node<'_>, bodies: &[&str]) -> Res<ContactSpec> {
                 &[
                     ("incremental", SlipHistory::Incremental),
                     ("accumulated", SlipHistory::Accumulated),
+                ],
+            )
+        })?,
+        face_position: t.opt("face_position", FacePosition::Interpolated, |n| {
+            n.choice(
+                "face_position",
+                &[
+                    ("boundary-value", FacePosition::BoundaryValue),
+                    ("interpolated", FacePosition::Interpolated),
                 ],
             )
         })?,

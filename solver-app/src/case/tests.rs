@@ -784,6 +784,7 @@ material = { model = "linear-elastic", E = 1, nu = 0.3 }
             relaxation_tangential: 0.1,
             detection: Detection::AdvancingFront,
             slip_history: contact_force::SlipHistory::Incremental,
+            face_position: FacePosition::Interpolated,
         }]
     );
     let c = parse(&format!(
@@ -870,6 +871,16 @@ algorithm = "pointwise"
     assert_eq!(
         c.contacts[0].slip_history,
         contact_force::SlipHistory::Accumulated
+    );
+    let c = parse(&format!(
+        "{two}[[contact]]\nmaster = \"plane/x\"\nslave = \"cyl/x\"\nface_position = \"boundary-value\"\n"
+    ));
+    assert_eq!(c.contacts[0].face_position, FacePosition::BoundaryValue);
+    let e = bad("master = \"plane/x\"\nslave = \"cyl/x\"\nface_position = \"centre\"");
+    assert_eq!(e.key.as_deref(), Some("contact[0].face_position"));
+    assert!(
+        e.message.contains("\"boundary-value\", \"interpolated\""),
+        "{e}"
     );
     let e = bad("master = \"plane/x\"\nslave = \"cyl/x\"\nslip_history = \"total\"");
     assert_eq!(e.key.as_deref(), Some("contact[0].slip_history"));

@@ -509,6 +509,7 @@ fn case_format_example_parses_with_stated_values() {
             relaxation_tangential: 0.1,
             detection: Detection::AdvancingFront,
             slip_history: contact_force::SlipHistory::Incremental,
+            face_position: solver_app::case::FacePosition::Interpolated,
         }]
     );
     assert_eq!(c.output.directory, PathBuf::from("results"));

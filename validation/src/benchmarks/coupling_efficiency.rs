@@ -89,6 +89,8 @@ pub struct CouplingRun {
     pub relative_gap: f64,
     /// Mean owner-cell height Ω/Γ of the slave faces with pressure, m.
     pub contact_cell_height: f64,
+    /// Normal contact force (as the bodies receive it), N.
+    pub normal_force: f64,
 }
 
 impl CouplingRun {
@@ -149,6 +151,7 @@ pub fn run(b: Benchmark, settings: CouplingSettings) -> CouplingRun {
         pressures,
         relative_gap,
         contact_cell_height,
+        normal_force: c.stats.normal_force,
     }
 }
 
@@ -233,7 +236,8 @@ impl SweepRow {
 }
 
 /// Implicit coupling and explicit coupling with each of `relaxations` at
-/// ε_n/E_s = `ratio`. An explicit run stops after `max_outer` or, once one
+/// ε_n/E_s = `ratio`, both with the faces at `face_position`. An explicit
+/// run stops after `max_outer` or, once one
 /// has converged to the implicit answer ([`SAME_ANSWER_PRESSURE`]), after
 /// as many outer iterations as the best so far (it cannot be the optimum
 /// then).
@@ -242,16 +246,18 @@ pub fn sweep(
     ratio: f64,
     relaxations: &[f64],
     max_outer: usize,
+    face_position: solver_app::case::FacePosition,
     mut report: impl FnMut(&CouplingRun),
 ) -> SweepRow {
     let b = cal.benchmark;
     let fn_ = cal.penalty_scale(ratio);
-    let implicit = run(b, CouplingSettings::implicit(fn_, max_outer));
+    let at = |s: CouplingSettings| CouplingSettings { face_position, ..s };
+    let implicit = run(b, at(CouplingSettings::implicit(fn_, max_outer)));
     report(&implicit);
     let mut explicit: Vec<CouplingRun> = Vec::new();
     let mut cap = max_outer;
     for &r in relaxations {
-        let e = run(b, CouplingSettings::explicit(fn_, r, cap));
+        let e = run(b, at(CouplingSettings::explicit(fn_, r, cap)));
         report(&e);
         if e.converged && e.pressure_difference(&implicit) <= SAME_ANSWER_PRESSURE {
             cap = cap.min(e.cost.outer_iterations);

@@ -58,6 +58,8 @@ pub struct CouplingSettings {
     pub relaxation: f64,
     /// Outer iterations per increment at most (`[solver] max_outer`).
     pub max_outer: usize,
+    /// Where a contact face is when the gap is measured (`face_position`).
+    pub face_position: solver_app::case::FacePosition,
 }
 
 impl CouplingSettings {
@@ -68,6 +70,7 @@ impl CouplingSettings {
             penalty_scale,
             relaxation: 1.0,
             max_outer,
+            face_position: solver_app::case::FacePosition::Interpolated,
         }
     }
 
@@ -79,6 +82,16 @@ impl CouplingSettings {
             penalty_scale,
             relaxation,
             max_outer,
+            face_position: solver_app::case::FacePosition::Interpolated,
+        }
+    }
+
+    /// The same with the gaps measured between the faces at their boundary
+    /// displacements (`face_position = "boundary-value"`).
+    pub fn at_boundary_values(self) -> Self {
+        CouplingSettings {
+            face_position: solver_app::case::FacePosition::BoundaryValue,
+            ..self
         }
     }
 
@@ -99,6 +112,7 @@ impl CouplingSettings {
         c.penalty_scale = self.penalty_scale;
         c.relaxation_normal = self.relaxation;
         c.relaxation_tangential = self.relaxation;
+        c.face_position = self.face_position;
         case.solver.max_outer = self.max_outer;
     }
 }

@@ -60,6 +60,8 @@ pub struct CouplingSettings {
     pub max_outer: usize,
     /// Where a contact face is when the gap is measured (`face_position`).
     pub face_position: solver_app::case::FacePosition,
+    /// Outer tolerance (`[solver] tolerance`); `None`: the case's.
+    pub tolerance: Option<f64>,
 }
 
 impl CouplingSettings {
@@ -71,6 +73,7 @@ impl CouplingSettings {
             relaxation: 1.0,
             max_outer,
             face_position: solver_app::case::FacePosition::Interpolated,
+            tolerance: None,
         }
     }
 
@@ -83,6 +86,15 @@ impl CouplingSettings {
             relaxation,
             max_outer,
             face_position: solver_app::case::FacePosition::Interpolated,
+            tolerance: None,
+        }
+    }
+
+    /// The same with the outer tolerance `tolerance`.
+    pub fn with_tolerance(self, tolerance: f64) -> Self {
+        CouplingSettings {
+            tolerance: Some(tolerance),
+            ..self
         }
     }
 
@@ -114,6 +126,9 @@ impl CouplingSettings {
         c.relaxation_tangential = self.relaxation;
         c.face_position = self.face_position;
         case.solver.max_outer = self.max_outer;
+        if let Some(t) = self.tolerance {
+            case.solver.tolerance = t;
+        }
     }
 }
 

@@ -35,9 +35,12 @@ pub struct Options {
     pub indentation_steps: usize,
     /// Increment of the slide in time (0.002 as shipped, i.e. 0.02 mm).
     pub slide_step: f64,
-    /// `Some(true)`: implicit, `Some(false)`: explicit coupling (default
-    /// relaxation); `None`: as in the case file.
+    /// `Some(true)`: implicit, `Some(false)`: explicit coupling (with
+    /// `relaxation`); `None`: as in the case file.
     pub implicit: Option<bool>,
+    /// Under-relaxation of both traction parts under explicit coupling
+    /// (eq. 4.13; 0.1, the default, stops at t = 0.335).
+    pub relaxation: f64,
     /// Block arc master, foundation top slave.
     pub swapped: bool,
 }
@@ -50,6 +53,7 @@ impl Default for Options {
             indentation_steps: 100,
             slide_step: 0.002,
             implicit: None,
+            relaxation: 0.1,
             swapped: false,
         }
     }
@@ -145,7 +149,15 @@ pub fn case_text(opts: &Options) -> String {
     text = text.replace("intervals = [[1.0, 100], [2.0, 500]]", &intervals);
     match opts.implicit {
         Some(true) => {}
-        Some(false) => text = text.replace("coupling = \"implicit\"", "coupling = \"explicit\""),
+        Some(false) => {
+            text = text.replace(
+                "coupling = \"implicit\"",
+                &format!(
+                    "coupling = \"explicit\"\nrelaxation = {{ normal = {r}, tangential = {r} }}",
+                    r = opts.relaxation
+                ),
+            )
+        }
         None => {}
     }
     if opts.swapped {

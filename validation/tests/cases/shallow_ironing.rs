@@ -4,7 +4,8 @@
 //! neo-Hookean, plane strain, N and mm.
 //!
 //! The full case (600 increments, ~186,000 outer iterations, 12 min on
-//! one core) is `--ignored`; the default test runs the indentation as
+//! one core) is `--ignored`, as is implicit against explicit coupling up
+//! to t = 1.2 (issue 8); the default test runs the indentation as
 //! shipped (100 increments, ~45 s) and checks the vertical force at
 //! t = 1 against the published curves.
 use validation::benchmarks::shallow_ironing::{
@@ -161,4 +162,59 @@ fn reference_curves_parse() {
         eprintln!("{}: V(t = 1) = {v:.1} N/mm", c.source);
         assert!(v > 250.0 && v < 350.0, "{}: {v}", c.source);
     }
+}
+
+/// Issue 8, friction: implicit against explicit coupling over the
+/// indentation and the first 2 mm of the slide (t = 1.2, 100 increments
+/// each), explicit at relaxation 0.05, the best that runs (0.07 stops at
+/// t = 0.43 and the default 0.1 at 0.335, no convergence in 20,000 outer
+/// iterations at four cut-backs; 0.02 needs 202 outer iterations per
+/// indentation increment against 169).
+/// Measured: implicit 69.4 outer iterations per indentation increment and
+/// 228 per slide increment, explicit 169 and 559 (2.4× each); H and V
+/// within 0.1 % and 0.4 % of each other at t = 1, 1.1 and 1.2 (μ_g(1.2)
+/// 0.3046 implicit, 0.3033 explicit). The thesis reports more than 10× on
+/// ironing; here the explicit coupling that runs at all is nearly the
+/// best. About 8 minutes.
+#[test]
+#[ignore]
+fn implicit_against_explicit_coupling() {
+    let opts = |implicit: bool| Options {
+        until: 1.2,
+        slide_step: 0.002,
+        implicit: Some(implicit),
+        relaxation: 0.05,
+        ..Default::default()
+    };
+    let implicit = run(&opts(true));
+    let explicit = run(&opts(false));
+    for r in [&implicit, &explicit] {
+        assert!(r.converged, "{:?}", r.failure);
+    }
+    for t in [1.0, 1.1, 1.2] {
+        let (hi, vi) = implicit.forces_at(t);
+        let (he, ve) = explicit.forces_at(t);
+        eprintln!("t = {t}: H {hi:.3} / {he:.3}, V {vi:.3} / {ve:.3} N/mm (implicit / explicit)");
+        assert!(
+            (hi / he - 1.0).abs() < 0.01,
+            "H at t = {t}: {hi} against {he}"
+        );
+        assert!(
+            (vi / ve - 1.0).abs() < 0.01,
+            "V at t = {t}: {vi} against {ve}"
+        );
+    }
+    let phases = [("indentation", 0.0, 1.0), ("slide", 1.0, 1.2)];
+    for (name, t0, t1) in phases {
+        let (ni, ne) = (implicit.mean_outer(t0, t1), explicit.mean_outer(t0, t1));
+        eprintln!(
+            "{name}: {ni:.1} implicit against {ne:.1} explicit outer iterations per increment ({:.2}×)",
+            ne / ni
+        );
+        assert!(ne / ni > 2.0, "{name}: {ni} against {ne}");
+    }
+    eprintln!(
+        "wall time: implicit {:.0} s, explicit {:.0} s",
+        implicit.cost.wall_seconds, explicit.cost.wall_seconds
+    );
 }

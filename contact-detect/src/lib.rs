@@ -46,6 +46,7 @@
 mod aabb;
 mod advancing_front;
 mod brute_force;
+mod box_bound;
 mod bvh;
 mod candidate_pairs;
 mod contact_zone;
@@ -66,6 +67,7 @@ mod workspace;
 pub use aabb::Aabb;
 pub use advancing_front::AdvancingFront;
 pub use brute_force::BruteForce;
+pub use box_bound::face_box_bound;
 pub use bvh::BvhDetector;
 pub use candidate_pairs::CandidatePairs;
 pub use contact_zone::ContactZone;

@@ -16,6 +16,13 @@ use parry3d_f64::partitioning::{Bvh, BvhBuildStrategy};
 /// Default skin of [`PairReuse`], as a fraction of h̄.
 pub const DEFAULT_SKIN: Real = 0.1;
 
+/// A list that served fewer reuse calls than this did not pay for itself
+/// (building it costs up to 1.6 advancing-front searches at 10⁵ faces).
+const MIN_REUSES: usize = 8;
+
+/// Most searches without a list after lists that did not pay.
+const MAX_BACKOFF: usize = 64;
+
 /// A detector that searches only when a face has moved out of its skin,
 /// and otherwise finds the pairs among those listed at the last search:
 /// the neighbour list with a skin of molecular dynamics (L. Verlet, Phys.
@@ -50,13 +57,18 @@ pub const DEFAULT_SKIN: Real = 0.1;
 /// **Cost** of a reuse call: O(face points) for the bounds of both
 /// surfaces (no hull, no rectangle), the boxes of the faces of listed
 /// pairs whose bounds meet, one pair test per such pair, no thread
-/// hand-off and no allocation once the buffers have grown. A search
-/// costs the inner detector plus O(n log n) for the list. Between outer
-/// iterations the surfaces move a small fraction of h̄, so searches are
-/// rare: with the default skin, curved beams search at 104 of 92,135
-/// calls and die drawing at 1,397 of 165,574 (a skin of 0.03 or 0.3
-/// changes die drawing's detection time by under 3 %: fewer searches,
-/// more listed pairs to test).
+/// hand-off and no allocation once the buffers have grown. It gains most
+/// where much of a surface is away from the other (no boxes there, no
+/// seed searches); where every face is in contact it costs about what a
+/// warm advancing front does (the crate README's benchmark). A search
+/// costs the inner detector plus the list, O(n log n) and up to 1.6
+/// searches at 10⁵ faces, so a list that serves fewer than
+/// 8 calls makes the next 1, 2, 4, … 64 searches go without
+/// one. Between outer iterations the surfaces move a small fraction of
+/// h̄, so searches are rare: with the default skin, curved beams search
+/// at about 100 of 92,135 calls and die drawing at about 1,400 of
+/// 165,574 (a skin of 0.03 or 0.3 changes die drawing's detection time
+/// by under 3 %: fewer searches, more listed pairs to test).
 pub struct PairReuse {
     inner: Box<dyn Detector + Send>,
     params: DetectParams,
@@ -78,7 +90,14 @@ pub struct PairReuse {
     leaves: [Vec<PAabb>; 2],
     leaf_faces: [Vec<u32>; 2],
     pairs: Vec<(u32, u32)>,
+    /// Reuse calls served by the current list.
+    list_reuses: usize,
+    /// Searches to go without building a list, and how many to skip after
+    /// the next list that does not pay (doubling up to [`MAX_BACKOFF`]).
+    skip: usize,
+    backoff: usize,
     searches: usize,
+    lists: usize,
     reuses: usize,
 }
 
@@ -112,20 +131,25 @@ impl PairReuse {
             leaves: Default::default(),
             leaf_faces: Default::default(),
             pairs: Vec::new(),
+            list_reuses: 0,
+            skip: 0,
+            backoff: 0,
             searches: 0,
+            lists: 0,
             reuses: 0,
         })
     }
 
-    /// Calls that searched, and calls that reused the list, so far.
-    pub fn counts(&self) -> (usize, usize) {
-        (self.searches, self.reuses)
+    /// Calls that searched, lists built, and calls that reused a list, so far.
+    pub fn counts(&self) -> (usize, usize, usize) {
+        (self.searches, self.lists, self.reuses)
     }
 
-    /// The pairs listed at the last search (a superset of the pairs of
-    /// every call since).
-    pub fn list(&self) -> &CandidatePairs {
-        &self.list
+    /// The pairs listed at the last search that built a list, while that
+    /// list holds (a superset of the pairs of every call since); `None`
+    /// when there is no such list.
+    pub fn list(&self) -> Option<&CandidatePairs> {
+        self.list_sizes.map(|_| &self.list)
     }
 
     fn box_size(&self, h: Real) -> (FaceBoxSize, Real) {
@@ -168,6 +192,12 @@ impl PairReuse {
     ) -> Result<DetectionStats, DetectError> {
         let mut stats = self.inner.detect(surfaces[0], surfaces[1], out)?;
         self.searches += 1;
+        if self.skip > 0 {
+            self.skip -= 1;
+            return Ok(stats);
+        }
+        self.lists += 1;
+        self.list_reuses = 0;
         let (size, min_area) = self.box_size(h);
         let sigma = self.skin * h;
         let mut zone = [Aabb::empty(); 2];
@@ -311,8 +341,18 @@ impl Detector for PairReuse {
             .unwrap_or(0.0);
         let surfaces = [master, slave];
         let stats = if self.list_holds(surfaces, h) {
+            self.list_reuses += 1;
             self.reuse(surfaces, h, out)
         } else {
+            if self.list_sizes.take().is_some() {
+                // the list stopped holding: back off if it did not pay
+                self.backoff = if self.list_reuses < MIN_REUSES {
+                    (2 * self.backoff).clamp(1, MAX_BACKOFF)
+                } else {
+                    0
+                };
+                self.skip = self.backoff;
+            }
             self.search(surfaces, h, out)?
         };
         self.freeze.store(master, slave, out, &stats);
@@ -323,6 +363,8 @@ impl Detector for PairReuse {
         self.inner.reset();
         self.freeze.clear();
         self.list_sizes = None;
+        self.skip = 0;
+        self.backoff = 0;
     }
 
     fn set_frozen(&mut self, frozen: bool) {
@@ -400,17 +442,19 @@ mod tests {
             let mut reuse = PairReuse::new(method, params, DEFAULT_SKIN).unwrap();
             let mut bf = BruteForce::new(params);
             let (mut got, mut fresh) = (CandidatePairs::new(), CandidatePairs::new());
-            let mut moved_pairs = 0;
+            let (mut moved_pairs, mut listed) = (0, 0);
+            let mut x = 0.0;
             for k in 0..120 {
                 let t = k as f64;
-                // slides and sinks in small steps (0.004 h to 0.04 h per call)
-                // with a few jumps beyond the skin
-                let step = if k % 40 == 39 { 0.3 * h } else { 0.01 * h };
-                let shift = Vector::new(step * t, 0.3 * step * t, 0.1 * h - 0.005 * h * t);
+                // slides, sinks, turns and bends by about 0.005 h per call,
+                // as between outer iterations, with a jump of 0.3 h (beyond
+                // the skin) every 40 calls
+                x += if k % 40 == 39 { 0.3 * h } else { 0.002 * h };
+                let shift = Vector::new(x, 0.3 * x, 0.1 * h - 0.001 * h * t);
                 let pts = place(
                     &reference,
                     shift,
-                    0.002 * t,
+                    0.0004 * t,
                     0.05 * (t / 40.0).sin(),
                     1e-3 * h,
                 );
@@ -418,14 +462,16 @@ mod tests {
                 let stats = reuse.detect(&master, &slave, &mut got).unwrap();
                 bf.detect(&master, &slave, &mut fresh).unwrap();
                 assert_eq!(got, fresh, "{method}, call {k} (reused: {})", stats.reused);
-                assert!(fresh
-                    .iter()
-                    .all(|(m, s)| reuse.list().contains(m as usize, s)));
+                if let Some(list) = reuse.list() {
+                    assert!(fresh.iter().all(|(m, s)| list.contains(m as usize, s)));
+                    listed += 1;
+                }
                 assert_eq!(stats.pairs, fresh.n_pairs());
                 moved_pairs += fresh.n_pairs();
             }
             assert!(moved_pairs > 1000, "the surfaces hardly met: {moved_pairs}");
-            let (searches, reuses) = reuse.counts();
+            assert!(listed > 100, "{method}: a list held at {listed} calls");
+            let (searches, _, reuses) = reuse.counts();
             assert!(
                 reuses > 80 && searches >= 4,
                 "{method}: {searches} searches, {reuses} reuses"
@@ -434,36 +480,63 @@ mod tests {
     }
 
     /// A face leaving its skin, a change of face counts or a reset forces a
-    /// search; an unmoved surface is reused even with no skin.
+    /// search; an unmoved surface is reused even with no skin; a list that
+    /// served few calls makes the next search go without one.
     #[test]
     fn searches_when_the_list_may_not_hold() {
         let params = DetectParams::default();
         let master = patch(4, true);
         let mut slave = patch(4, false);
+        let other = patch(3, false);
         let mut reuse = PairReuse::new(DetectionMethod::AdvancingFront, params, 0.0).unwrap();
         let mut out = CandidatePairs::new();
-        assert!(!reuse.detect(&master, &slave, &mut out).unwrap().reused);
-        assert!(out.n_pairs() > 0);
-        let first = out.clone();
-        assert!(reuse.detect(&master, &slave, &mut out).unwrap().reused);
-        assert_eq!(out, first);
-        // one point moved: no skin, so a search
+        let mut reused =
+            |reuse: &mut PairReuse, s: &Surface| reuse.detect(&master, s, &mut out).unwrap().reused;
+        assert!(!reused(&mut reuse, &slave));
+        for _ in 0..MIN_REUSES {
+            assert!(reused(&mut reuse, &slave));
+        }
+        // one point moved: no skin, so a search (and a list: the last paid)
         let mut pts = slave.points.clone();
         pts[0].z += 1e-6;
         slave.update_points(&pts);
-        assert!(!reuse.detect(&master, &slave, &mut out).unwrap().reused);
-        assert!(reuse.detect(&master, &slave, &mut out).unwrap().reused);
-        // other face counts (roles swapped)
-        assert!(
-            !reuse
-                .detect(&master, &patch(3, false), &mut out)
-                .unwrap()
-                .reused
-        );
+        assert!(!reused(&mut reuse, &slave));
+        assert!(reused(&mut reuse, &slave));
+        // other face counts: a search; that list served one call, so this
+        // search builds none, and the next one does
+        assert!(!reused(&mut reuse, &other));
+        assert!(!reused(&mut reuse, &slave));
+        assert!(reused(&mut reuse, &slave));
+        assert_eq!(reuse.counts(), (4, 3, MIN_REUSES + 2));
         reuse.reset();
-        assert!(!reuse.detect(&master, &slave, &mut out).unwrap().reused);
-        assert_eq!(reuse.counts(), (4, 2));
+        assert!(!reused(&mut reuse, &slave));
+        assert_eq!(reuse.counts(), (5, 4, MIN_REUSES + 2));
         assert!(PairReuse::new(DetectionMethod::Bvh, params, -0.1).is_err());
         assert!(PairReuse::new(DetectionMethod::Bvh, params, f64::NAN).is_err());
+    }
+
+    /// Moving beyond the skin at every call: lists are built ever more
+    /// rarely (doubling back-off), and the pairs stay exact.
+    #[test]
+    fn backs_off_when_lists_do_not_pay() {
+        let params = DetectParams::default();
+        let master = patch(6, true);
+        let mut slave = patch(6, false);
+        let reference = slave.points.clone();
+        let mut reuse = PairReuse::new(DetectionMethod::AdvancingFront, params, 0.1).unwrap();
+        let mut bf = BruteForce::new(params);
+        let (mut got, mut fresh) = (CandidatePairs::new(), CandidatePairs::new());
+        let h = 1.0 / 6.0;
+        for k in 0..200 {
+            let dx = if k % 2 == 0 { 0.0 } else { 0.3 * h };
+            let pts = place(&reference, Vector::new(dx, 0.0, -0.1 * h), 0.0, 0.0, 0.0);
+            slave.update_points(&pts);
+            reuse.detect(&master, &slave, &mut got).unwrap();
+            bf.detect(&master, &slave, &mut fresh).unwrap();
+            assert_eq!(got, fresh, "call {k}");
+        }
+        let (searches, lists, reuses) = reuse.counts();
+        assert_eq!((searches, reuses), (200, 0));
+        assert!(lists <= 10, "{lists} lists");
     }
 }

@@ -6,7 +6,8 @@
 //! by 0.1 rad about the vertical so that the grids are non-conformal and the
 //! slave covers the master. "After a small motion": the slave alternates
 //! between two positions 2 % of a face apart (plus a 10⁻³ rad twist), so
-//! every call follows a small motion, as between outer iterations.
+//! every call follows a small motion, as between outer iterations; within
+//! the skin of [`PairReuse`], which therefore searches once and then reuses.
 //!
 //! Environment: `FVC_BENCH_MAX_FACES` (default 1000000) caps N;
 //! `FVC_BENCH_BRUTE_MAX` (default 10000) caps N for brute force in the
@@ -16,7 +17,8 @@
 //! calls (the minimum is the figure least disturbed by other processes on
 //! a shared machine).
 use contact_detect::{
-    AdvancingFront, BruteForce, BvhDetector, CandidatePairs, DetectParams, Detector,
+    AdvancingFront, BruteForce, BvhDetector, CandidatePairs, DetectParams, DetectionMethod,
+    Detector, PairReuse, DEFAULT_SKIN,
 };
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use fv_mesh::generators::box_mesh;
@@ -167,6 +169,21 @@ fn table(max_faces: usize, brute_max: usize) {
                 af.detect(&p.master, s, &mut out).expect("af");
             }),
         );
+        let mut reuse =
+            PairReuse::new(DetectionMethod::AdvancingFront, params, DEFAULT_SKIN).expect("reuse");
+        row(
+            "pair-reuse",
+            "after small motion",
+            min_median(20, budget, || {
+                flip = !flip;
+                let s = if flip { &p.slave_a } else { &p.slave_b };
+                reuse.detect(&p.master, s, &mut out).expect("reuse");
+            }),
+        );
+        eprintln!(
+            "N = {nf}: pair reuse (searches, lists, reuses) {:?}",
+            reuse.counts()
+        );
         let mut ws = contact_detect::Workspace::default();
         row(
             "(boxes and zone only)",
@@ -257,6 +274,14 @@ fn bench(c: &mut Criterion) {
             b.iter(|| {
                 let s = next(&mut flip);
                 black_box(bvh.detect(&p.master, s, &mut out).expect("bvh"))
+            })
+        });
+        let mut reuse =
+            PairReuse::new(DetectionMethod::AdvancingFront, params, DEFAULT_SKIN).expect("reuse");
+        g.bench_function(BenchmarkId::new("pair-reuse", nf), |b| {
+            b.iter(|| {
+                let s = next(&mut flip);
+                black_box(reuse.detect(&p.master, s, &mut out).expect("reuse"))
             })
         });
         if nf <= brute_max {

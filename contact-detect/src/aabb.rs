@@ -47,6 +47,29 @@ impl Aabb {
             && self.max.z >= o.min.z
     }
 
+    /// Whether `o` lies in the closed box (an empty `o` always does).
+    #[inline]
+    pub fn contains_box(&self, o: &Aabb) -> bool {
+        o.is_empty()
+            || (self.min.x <= o.min.x
+                && self.min.y <= o.min.y
+                && self.min.z <= o.min.z
+                && self.max.x >= o.max.x
+                && self.max.y >= o.max.y
+                && self.max.z >= o.max.z)
+    }
+
+    /// The box grown by `d` on every side (an empty box stays empty).
+    pub fn inflated(&self, d: Real) -> Aabb {
+        if self.is_empty() {
+            return *self;
+        }
+        Aabb {
+            min: self.min.add_scalar(-d),
+            max: self.max.add_scalar(d),
+        }
+    }
+
     /// The common part of two boxes (possibly empty).
     pub fn intersection(&self, o: &Aabb) -> Aabb {
         Aabb {
@@ -84,5 +107,12 @@ mod tests {
         e.merge(&b);
         assert_eq!(e.min, Vector::zeros());
         assert_eq!(e.max, Vector::repeat(2.0));
+        assert!(e.contains_box(&a) && e.contains_box(&b) && !a.contains_box(&e));
+        assert!(a.contains_box(&Aabb::empty()) && !Aabb::empty().contains_box(&a));
+        let g = a.inflated(0.5);
+        assert_eq!(g.min, Vector::repeat(-0.5));
+        assert_eq!(g.max, Vector::repeat(1.5));
+        assert!(g.contains_box(&a) && !a.contains_box(&g));
+        assert!(Aabb::empty().inflated(1.0).is_empty());
     }
 }

@@ -23,6 +23,35 @@ pub fn mean_face_size(a: &Surface, b: &Surface) -> Option<Real> {
     (n > 0 && sum.is_finite()).then(|| sum / n as Real)
 }
 
+/// The validity conditions of a face that do not need its box (see
+/// [`FaceBoxes`]): at least three points, all finite, a finite centre, a
+/// finite unit normal and an area above `min_area`.
+pub(crate) fn face_data_valid(s: &Surface, f: usize, min_area: Real) -> bool {
+    let pts = s.face(f);
+    let n = s.face_normals[f];
+    let area = s.face_mag[f];
+    pts.len() >= 3
+        && area.is_finite()
+        && area > min_area
+        && n.iter().all(|x| x.is_finite())
+        && (n.norm_squared() - 1.0).abs() < 1e-6
+        && s.face_centres[f].iter().all(|x| x.is_finite())
+        && pts
+            .iter()
+            .all(|&p| s.points[p as usize].iter().all(|x| x.is_finite()))
+}
+
+/// Box of an invalid face (never tested: its AABB is empty).
+const NULL_OBB: Obb = Obb {
+    centre: Vector::new(0.0, 0.0, 0.0),
+    axes: [
+        Vector::new(1.0, 0.0, 0.0),
+        Vector::new(0.0, 1.0, 0.0),
+        Vector::new(0.0, 0.0, 1.0),
+    ],
+    half: [0.0; 3],
+};
+
 /// Oriented and axis-aligned boxes of every face of a surface, with each
 /// face polygon in its box frame; buffers are reused between calls.
 ///
@@ -61,9 +90,38 @@ impl FaceBoxes {
     /// Recomputes all boxes of `s` for mean cell height `h` (eq. 4.10);
     /// the polygons (needed on the master side only) if `polygons`.
     pub fn update(&mut self, s: &Surface, h: Real, params: &DetectParams, polygons: bool) {
-        let (extrude_out, extrude_in, inflation) =
-            (params.extrusion_out, params.extrusion_in, params.inflation);
-        let nf = s.faces.len();
+        self.update_listed(s, h, params, polygons, None);
+    }
+
+    /// As [`FaceBoxes::update`], but only for the faces flagged in `listed`
+    /// (all faces if `None`): the others get the box of an invalid face
+    /// (not counted in [`FaceBoxes::n_invalid`]). A listed face's box is
+    /// the one [`FaceBoxes::update`] computes, to the bit.
+    pub fn update_listed(
+        &mut self,
+        s: &Surface,
+        h: Real,
+        params: &DetectParams,
+        polygons: bool,
+        listed: Option<&[bool]>,
+    ) {
+        self.clear();
+        let size = FaceBoxSize {
+            extrude_out: params.extrusion_out * h,
+            extrude_in: params.extrusion_in * h,
+            inflation: params.inflation,
+        };
+        let min_area = DEGENERATE_AREA * h * h;
+        for f in 0..s.faces.len() {
+            if listed.is_none_or(|l| l.get(f).copied().unwrap_or(false)) {
+                self.push_face(s, f, &size, min_area, polygons);
+            } else {
+                self.push_invalid();
+            }
+        }
+    }
+
+    fn clear(&mut self) {
         self.obb.clear();
         self.aabb.clear();
         self.valid.clear();
@@ -76,77 +134,83 @@ impl FaceBoxes {
         self.radius.clear();
         self.polygon_offsets.push(0);
         self.n_invalid = 0;
-        let size = FaceBoxSize {
-            extrude_out: extrude_out * h,
-            extrude_in: extrude_in * h,
-            inflation,
-        };
-        let min_area = DEGENERATE_AREA * h * h;
-        let null = Obb {
-            centre: Vector::zeros(),
-            axes: [Vector::x(), Vector::y(), Vector::z()],
-            half: [0.0; 3],
-        };
-        for f in 0..nf {
-            let pts = s.face(f);
-            let n = s.face_normals[f];
-            let c = s.face_centres[f];
-            let area = s.face_mag[f];
-            let mut ok = pts.len() >= 3
-                && area.is_finite()
-                && area > min_area
-                && n.iter().all(|x| x.is_finite())
-                && (n.norm_squared() - 1.0).abs() < 1e-6
-                && c.iter().all(|x| x.is_finite())
-                && pts
-                    .iter()
-                    .all(|&p| s.points[p as usize].iter().all(|x| x.is_finite()));
-            let mut obb = null;
-            if ok {
-                let start = self.polygon.len();
-                match face_obb(
-                    pts.iter().map(|&p| s.points[p as usize]),
-                    &n,
-                    &c,
-                    &size,
-                    &mut self.scratch,
-                    polygons.then_some(&mut self.polygon),
-                ) {
-                    Some(b) => obb = b,
-                    None => {
-                        self.polygon.truncate(start);
-                        ok = false;
-                    }
+    }
+
+    /// Appends the entries of a face that takes part in no pair (no box,
+    /// no polygon).
+    fn push_invalid(&mut self) {
+        self.obb.push(NULL_OBB);
+        self.aabb.push(Aabb::empty());
+        self.valid.push(false);
+        self.scale.push(0.0);
+        self.polygon_box.push(prepare_polygon(
+            &[],
+            &mut self.polygon_axes,
+            &mut self.polygon_extents,
+        ));
+        self.radius.push(0.0);
+        self.polygon_offsets.push(self.polygon.len() as u32);
+    }
+
+    /// Appends the box of face `f` (invalid faces counted).
+    fn push_face(
+        &mut self,
+        s: &Surface,
+        f: usize,
+        size: &FaceBoxSize,
+        min_area: Real,
+        polygons: bool,
+    ) {
+        let inflation = size.inflation;
+        let pts = s.face(f);
+        let n = s.face_normals[f];
+        let c = s.face_centres[f];
+        let mut ok = face_data_valid(s, f, min_area);
+        let mut obb = NULL_OBB;
+        if ok {
+            let start = self.polygon.len();
+            match face_obb(
+                pts.iter().map(|&p| s.points[p as usize]),
+                &n,
+                &c,
+                size,
+                &mut self.scratch,
+                polygons.then_some(&mut self.polygon),
+            ) {
+                Some(b) => obb = b,
+                None => {
+                    self.polygon.truncate(start);
+                    ok = false;
                 }
             }
-            let start = self.polygon_offsets[f] as usize;
-            let bbox = prepare_polygon(
-                &self.polygon[start..],
-                &mut self.polygon_axes,
-                &mut self.polygon_extents,
-            );
-            self.polygon_box.push(bbox);
-            let r2 = if ok {
-                pts.iter()
-                    .map(|&p| (s.points[p as usize] - c).norm_squared())
-                    .fold(0.0, Real::max)
-            } else {
-                0.0
-            };
-            self.radius.push(r2.sqrt());
-            if ok {
-                let k = 2.0 / (1.0 + inflation);
-                self.scale.push(k * obb.half[0].max(obb.half[1]));
-                self.aabb.push(obb.aabb());
-            } else {
-                self.n_invalid += 1;
-                self.scale.push(0.0);
-                self.aabb.push(Aabb::empty());
-            }
-            self.obb.push(obb);
-            self.valid.push(ok);
-            self.polygon_offsets.push(self.polygon.len() as u32);
         }
+        let start = self.polygon_offsets[f] as usize;
+        let bbox = prepare_polygon(
+            &self.polygon[start..],
+            &mut self.polygon_axes,
+            &mut self.polygon_extents,
+        );
+        self.polygon_box.push(bbox);
+        let r2 = if ok {
+            pts.iter()
+                .map(|&p| (s.points[p as usize] - c).norm_squared())
+                .fold(0.0, Real::max)
+        } else {
+            0.0
+        };
+        self.radius.push(r2.sqrt());
+        if ok {
+            let k = 2.0 / (1.0 + inflation);
+            self.scale.push(k * obb.half[0].max(obb.half[1]));
+            self.aabb.push(obb.aabb());
+        } else {
+            self.n_invalid += 1;
+            self.scale.push(0.0);
+            self.aabb.push(Aabb::empty());
+        }
+        self.obb.push(obb);
+        self.valid.push(ok);
+        self.polygon_offsets.push(self.polygon.len() as u32);
     }
 
     /// Polygon of face `f` with its separating axes (empty for invalid faces).

@@ -28,6 +28,9 @@
 //! in the contact zone, [`BvhDetector`] tests the pairs whose OBB AABBs a
 //! BVH traversal reports, [`AdvancingFront`] walks face adjacency from the
 //! previous pairs (Algorithm 2; exact under the condition stated on it).
+//! [`PairReuse`] wraps any of them: it searches with it only when a face
+//! has moved out of a skin since the last search, and otherwise tests the
+//! pairs listed then (a Verlet list), returning the same set.
 //!
 //! # Degenerate faces
 //!
@@ -45,6 +48,7 @@
 
 mod aabb;
 mod advancing_front;
+mod box_bound;
 mod brute_force;
 mod bvh;
 mod candidate_pairs;
@@ -56,6 +60,7 @@ mod face_boxes;
 mod freeze;
 mod min_area_rectangle;
 mod obb;
+mod pair_reuse;
 mod params;
 mod sat_obb_obb;
 mod sat_polygon_polygon;
@@ -65,6 +70,7 @@ mod workspace;
 
 pub use aabb::Aabb;
 pub use advancing_front::AdvancingFront;
+pub use box_bound::face_box_bound;
 pub use brute_force::BruteForce;
 pub use bvh::BvhDetector;
 pub use candidate_pairs::CandidatePairs;
@@ -75,6 +81,7 @@ pub use error::DetectError;
 pub use face_boxes::{mean_face_size, FaceBoxes, DEGENERATE_AREA};
 pub use min_area_rectangle::{min_area_rectangle, Rectangle};
 pub use obb::{face_obb, plane_basis, FaceBoxSize, Obb, ObbScratch};
+pub use pair_reuse::{PairReuse, DEFAULT_SKIN};
 pub use params::DetectParams;
 pub use sat_obb_obb::obb_overlap;
 pub use sat_polygon_polygon::{
@@ -114,6 +121,11 @@ pub struct DetectionStats {
     pub pairs: usize,
     /// Whether the pairs were reused without search ([`Detector::set_frozen`]).
     pub frozen: bool,
+    /// Whether the pairs were found among those listed at the last search
+    /// ([`PairReuse`]; exact, unlike `frozen`).
+    pub reused: bool,
+    /// Pairs listed at the last search ([`PairReuse`] only).
+    pub listed_pairs: usize,
 }
 
 /// A contact detection algorithm (thesis §4.2): candidate pairs between a

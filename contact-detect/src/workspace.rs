@@ -56,6 +56,26 @@ impl Workspace {
         Ok(())
     }
 
+    /// Boxes of the listed faces only, for `h` given (the caller computed
+    /// it as [`Workspace::prepare`] does): pair tests on a known list of
+    /// candidates ([`crate::PairReuse`]). Serial; the contact zone is not
+    /// updated (the pair test does not read it).
+    pub fn prepare_listed(
+        &mut self,
+        master: &Surface,
+        slave: &Surface,
+        params: &DetectParams,
+        h: Real,
+        listed: [&[bool]; 2],
+    ) {
+        self.params = *params;
+        self.h = h;
+        self.master
+            .update_listed(master, h, params, true, Some(listed[0]));
+        self.slave
+            .update_listed(slave, h, params, false, Some(listed[1]));
+    }
+
     /// Statistics of the prepared call, before any pair test.
     pub fn base_stats(&self) -> DetectionStats {
         DetectionStats {

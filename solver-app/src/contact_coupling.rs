@@ -11,7 +11,9 @@ use crate::case::{
 };
 use crate::model::Body;
 use crate::profile::Phase;
-use contact_detect::{CandidatePairs, DetectParams, DetectionMethod, Detector};
+use contact_detect::{
+    CandidatePairs, DetectParams, DetectionMethod, Detector, PairReuse, DEFAULT_SKIN,
+};
 use contact_force::{
     ContactAlgorithm, ContactAlgorithmKind, ContactLaw, ContactStats, ContactTractions, Coupling,
     ExplicitRelaxation, GgiWeights, PenaltyParams, SurfaceContact, SurfaceMaterial, SymmetryPlane,
@@ -647,9 +649,12 @@ impl ContactSet {
             };
             let coupling = ExplicitRelaxation::new(normal_relaxation, tangential_relaxation)
                 .map_err(|e| src.error(&format!("{key}.relaxation"), e.to_string()))?;
-            let detector = method
-                .detector(DetectParams::default())
-                .map_err(|e| src.error(&format!("{key}.detection"), e.to_string()))?;
+            // the configured method searches; between searches the pairs
+            // are found among those listed then (same pairs, see PairReuse)
+            let detector: Box<dyn Detector + Send> = Box::new(
+                PairReuse::new(method, DetectParams::default(), DEFAULT_SKIN)
+                    .map_err(|e| src.error(&format!("{key}.detection"), e.to_string()))?,
+            );
             for b in [mb, sb] {
                 if !bodies[b].rigid && set.cell_to_point[b].is_none() {
                     set.cell_to_point[b] = Some(CellToPoint::new(&bodies[b].mesh, &bodies[b].geom));

@@ -1,11 +1,13 @@
 //! Property tests: on random facing surfaces and random small motions the
 //! three detectors return identical pair sets, the warm advancing front
-//! equals brute force, and no pair whose projected polygons truly
-//! intersect (exact convex clipping, computed here independently) within
-//! the detection band is missed.
+//! and the pairs reused between searches ([`PairReuse`]) equal brute
+//! force, and no pair whose projected polygons truly intersect (exact
+//! convex clipping, computed here independently) within the detection
+//! band is missed.
 use crate::common::{Patch, Placement};
 use contact_detect::{
-    AdvancingFront, BruteForce, BvhDetector, CandidatePairs, DetectParams, Detector,
+    AdvancingFront, BruteForce, BvhDetector, CandidatePairs, DetectParams, DetectionMethod,
+    Detector, PairReuse, DEFAULT_SKIN,
 };
 use fv_mesh::{Surface, Vector};
 use proptest::prelude::*;
@@ -285,6 +287,18 @@ fn run(c: &Case) -> Result<usize, TestCaseError> {
         .unwrap();
     let mut bvh = BvhDetector::new(p);
     let mut bf = BruteForce::new(p);
+    // pairs reused between searches: reused while the motions stay within
+    // the skin, searched otherwise; equal to brute force either way
+    let mut reuse = PairReuse::new(DetectionMethod::AdvancingFront, p, DEFAULT_SKIN).unwrap();
+    let mut reused = CandidatePairs::new();
+    reuse
+        .detect(&master.surface, &slave.surface, &mut reused)
+        .unwrap();
+    prop_assert_eq!(
+        &reused,
+        &reference,
+        "pair reuse differs at its first search"
+    );
     let (mut b1, mut b2) = (CandidatePairs::new(), CandidatePairs::new());
     for (k, dm) in c.motions.iter().enumerate() {
         place.shift += Vector::new(dm[0], dm[1], dm[2] * c.h);
@@ -303,7 +317,36 @@ fn run(c: &Case) -> Result<usize, TestCaseError> {
             "warm advancing front differs after motion {}",
             k
         );
+        let stats = reuse
+            .detect(&master.surface, &slave.surface, &mut reused)
+            .unwrap();
+        prop_assert_eq!(
+            &reused,
+            &b1,
+            "pair reuse differs after motion {} (reused: {})",
+            k,
+            stats.reused
+        );
         true_pairs += check_no_true_pair_missed(&master.surface, &slave.surface, c.h, &b1)?;
+        // creeping on by 1/50 of the motion, as between outer iterations:
+        // mostly within the skin
+        for _ in 0..3 {
+            place.shift += Vector::new(dm[0], dm[1], dm[2] * c.h) / 50.0;
+            place.rotate += dm[3] / 50.0;
+            place.curvature += dm[4] / 50.0;
+            slave.place(&place);
+            bf.detect(&master.surface, &slave.surface, &mut b1).unwrap();
+            let stats = reuse
+                .detect(&master.surface, &slave.surface, &mut reused)
+                .unwrap();
+            prop_assert_eq!(
+                &reused,
+                &b1,
+                "pair reuse differs creeping after motion {} (reused: {})",
+                k,
+                stats.reused
+            );
+        }
     }
     Ok(true_pairs)
 }

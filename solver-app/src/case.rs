@@ -218,13 +218,31 @@ fn build(t: &Table<'_>, source: CaseSource) -> Res<Case> {
 
     let names: Vec<&str> = bodies.iter().map(|b| b.name.as_str()).collect();
     let contact_entry = t.get("contact");
-    let contacts = match &contact_entry {
-        Some(c) => tables(&c.node(), "contact")?
-            .iter()
-            .map(|c| contact::contact(&c.node(), &names))
-            .collect::<Res<Vec<_>>>()?,
-        None => Vec::new(),
-    };
+    let mut contacts: Vec<ContactSpec> = Vec::new();
+    if let Some(c) = &contact_entry {
+        for item in tables(&c.node(), "contact")? {
+            let node = item.node();
+            let spec = contact::contact(&node, &names)?;
+            // a deformable body's patch carries one contact condition: a
+            // second pair would replace the first one's (a rigid body's
+            // patch, which carries none, may be in several pairs)
+            for (key, side) in [("master", &spec.master), ("slave", &spec.slave)] {
+                let rigid = bodies.iter().any(|b| b.name == side.0 && b.rigid);
+                let earlier = contacts
+                    .iter()
+                    .position(|o| o.master == *side || o.slave == *side);
+                if let (false, Some(j)) = (rigid, earlier) {
+                    return Err(node.table()?.req(key)?.node().err(format!(
+                        "patch \"{}/{}\" of the deformable body \"{}\" is already in \
+                         contact[{j}]; a deformable body's patch can be in one contact \
+                         pair only (a rigid body's patch may be in several)",
+                        side.0, side.1, side.0
+                    )));
+                }
+            }
+            contacts.push(spec);
+        }
+    }
     let output = match t.get("output") {
         Some(a) => settings::output(&a.node().table()?)?,
         None => OutputSettings::default(),

@@ -165,6 +165,26 @@ impl FieldOutput {
                 let s = &side.surface;
                 let n = s.n_faces();
                 let get = |v: &Vec<f64>, i: usize| v.get(i).copied().unwrap_or(0.0);
+                // a rigid body's patch may be in several pairs (a floor under
+                // two bodies): one dataset per patch, with the pairs' pressures
+                // and tractions added and the smallest gap
+                if let Some(merged) = patches
+                    .iter_mut()
+                    .find(|p| p.body == side.body && p.patch == side.patch)
+                {
+                    for i in 0..n.min(merged.pressure.len()) {
+                        merged.pressure[i] += get(&sc.pressure, i);
+                        let t = side.applied.get(i).copied().unwrap_or_else(Vector::zeros);
+                        for (m, x) in merged.traction[i].iter_mut().zip([t.x, t.y, t.z]) {
+                            *m += x;
+                        }
+                        let g = get(&sc.gap, i);
+                        if g.is_finite() && !(merged.gap[i] <= g) {
+                            merged.gap[i] = g;
+                        }
+                    }
+                    continue;
+                }
                 patches.push(PatchBuffers {
                     body: side.body,
                     patch: side.patch,

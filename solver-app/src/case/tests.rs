@@ -805,8 +805,8 @@ algorithm = "segment-to-segment-nagata"
 relaxation = {{ tangential = 0.05 }}
 detection = "brute-force"
 [[contact]]
-master = "cyl/a"
-slave = "plane/b"
+master = "cyl/c"
+slave = "plane/ymax"
 algorithm = "pointwise"
 "#
     ));
@@ -898,6 +898,28 @@ algorithm = "pointwise"
     );
     let e = fail(&format!("{two}[contact]\nmaster = \"plane/x\"\n"));
     assert!(e.message.contains("[[contact]]"), "{e}");
+    // a deformable body's patch in two pairs is refused (the second pair's
+    // condition would replace the first's); a rigid body's patch is not
+    let pair = |m: &str, s: &str| format!("[[contact]]\nmaster = \"{m}\"\nslave = \"{s}\"\n");
+    let e = fail(&format!(
+        "{two}{}{}",
+        pair("plane/ymax", "cyl/a"),
+        pair("cyl/a", "cyl/b")
+    ));
+    assert_eq!(e.key.as_deref(), Some("contact[1].master"));
+    assert!(e.message.contains("already in contact[0]"), "{e}");
+    let e = fail(&format!(
+        "{two}{}{}",
+        pair("plane/ymax", "cyl/a"),
+        pair("plane/ymin", "cyl/a")
+    ));
+    assert_eq!(e.key.as_deref(), Some("contact[1].slave"));
+    let c = parse(&format!(
+        "{two}{}{}",
+        pair("plane/ymax", "cyl/a"),
+        pair("plane/ymax", "cyl/b")
+    ));
+    assert_eq!(c.contacts.len(), 2);
 }
 
 #[test]

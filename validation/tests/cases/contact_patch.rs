@@ -141,3 +141,71 @@ fn every_detection_mode_gives_the_same_contact_forces() {
         }
     }
 }
+
+/// One rigid floor under two blocks pressed by different amounts: a rigid
+/// body's patch may be master of several pairs. Each block carries the
+/// force it carries alone (the pairs do not see each other), and the
+/// results (one floor dataset with both pairs' pressures) are written.
+#[test]
+fn a_rigid_floor_under_two_blocks_carries_each_as_alone() {
+    let block = |name: &str, x0: f64, dy: f64| {
+        format!(
+            r#"
+[[body]]
+name = "{name}"
+mesh = {{ generator = "box", min = [{x0}, 0, 0], max = [{x1}, 1, 0.1], cells = [4, 5, 1] }}
+material = {{ model = "linear-elastic", E = 1000.0, nu = 0.3 }}
+[body.boundary.ymax]
+type = "displacement"
+value = [0, {dy}, 0]
+[body.boundary.zmin]
+type = "empty"
+[body.boundary.zmax]
+type = "empty"
+[body.boundary.xmin]
+type = "symmetry"
+[body.boundary.xmax]
+type = "symmetry"
+[[contact]]
+master = "floor/ymax"
+slave = "{name}/ymin"
+coupling = "implicit"
+"#,
+            x1 = x0 + 1.0
+        )
+    };
+    let floor = r#"
+title = "shared-floor"
+[time]
+end = 1.0
+steps = 1
+[solver]
+tolerance = 1e-10
+[[body]]
+name = "floor"
+rigid = true
+mesh = { generator = "box", min = [0, -0.2, 0], max = [3, 0, 0.1], cells = [1, 1, 1] }
+material = { model = "linear-elastic", E = 1000.0, nu = 0.3 }
+[body.boundary.ymin]
+type = "displacement"
+value = [0, 0, 0]
+"#;
+    let (a, b) = (block("a", 0.0, -0.01), block("b", 2.0, -0.004));
+    let force = |text: &str, slave: &str| {
+        let (out, history) = validation::run_toml_with_history(text);
+        assert!(out.converged, "{:?}", out.failure);
+        history.column(&format!("{slave}:normal_force"))[0]
+    };
+    let both = format!("{floor}{a}{b}");
+    let (fa, fb) = (force(&both, "a/ymin"), force(&both, "b/ymin"));
+    let (fa1, fb1) = (
+        force(&format!("{floor}{a}"), "a/ymin"),
+        force(&format!("{floor}{b}"), "b/ymin"),
+    );
+    eprintln!("shared floor: a {fa:.10e} (alone {fa1:.10e}), b {fb:.10e} (alone {fb1:.10e})");
+    assert!(fa > 0.0 && fb > 0.0);
+    assert!((fa - fa1).abs() <= 1e-9 * fa1, "{fa} against {fa1}");
+    assert!((fb - fb1).abs() <= 1e-9 * fb1, "{fb} against {fb1}");
+    // linear: the forces scale with the imposed compression
+    assert!((fa / fb - 2.5).abs() < 1e-6, "{}", fa / fb);
+}

@@ -136,6 +136,26 @@ pub trait LinearSolver {
         x: &mut [f64],
     ) -> Result<SolveInfo, LinearSolverError>;
 
+    /// Solves `a x_k = b_k` for every right-hand side with the last
+    /// factorisation (the displacement components of a segregated outer
+    /// iteration); `info[k]` receives each solve's report. One after the
+    /// other here; a solver may solve them side by side. Stops at the first
+    /// error.
+    fn solve_each(
+        &mut self,
+        a: &CsrMatrix,
+        b: &[&[f64]],
+        x: &mut [&mut [f64]],
+        info: &mut [SolveInfo],
+    ) -> Result<(), LinearSolverError> {
+        check_len("right-hand sides", x.len(), b.len())?;
+        check_len("infos", info.len(), b.len())?;
+        for ((b, x), i) in b.iter().zip(x.iter_mut()).zip(info.iter_mut()) {
+            *i = self.solve(a, b, x)?;
+        }
+        Ok(())
+    }
+
     /// Applies the preconditioner of the last factorisation once, z = M⁻¹ r
     /// (for a caller's own Krylov iteration on a larger system whose
     /// diagonal blocks are the factorised matrices). Returns `false`, with

@@ -101,6 +101,16 @@ pub struct PcgIc0 {
     factorised: bool,
     /// Diagnostics.
     info: FactorisationInfo,
+    /// Work vectors of [`PcgIc0::solve`].
+    work: PcgWork,
+    /// Work vectors of the further right-hand sides solved at the same
+    /// time by [`LinearSolver::solve_each`] (allocated at its first call).
+    extra: Vec<PcgWork>,
+}
+
+/// The work vectors of one PCG solve.
+#[derive(Debug, Clone, Default)]
+struct PcgWork {
     /// Residual.
     r: Vec<f64>,
     /// `A p`.
@@ -110,6 +120,29 @@ pub struct PcgIc0 {
     /// Forward-sweep result `w`, overwritten by the preconditioned residual `z`.
     y: Vec<f64>,
 }
+
+impl PcgWork {
+    fn new(n: usize) -> Self {
+        let mut w = PcgWork::default();
+        w.resize(n);
+        w
+    }
+
+    fn resize(&mut self, n: usize) {
+        for v in [&mut self.r, &mut self.q, &mut self.p, &mut self.y] {
+            v.clear();
+            v.resize(n, 0.0);
+        }
+    }
+}
+
+/// Systems of at least this many rows are solved side by side by
+/// [`LinearSolver::solve_each`] (below, handing them to the thread pool
+/// costs more than it saves).
+const PARALLEL_ROWS: usize = 4096;
+/// At most this many right-hand sides side by side (the three displacement
+/// components); more are solved one after the other.
+const MAX_SIDE_BY_SIDE: usize = 3;
 
 impl PcgIc0 {
     /// Creates a solver for `n` unknowns with default [`PcgParams`]; allocates the work vectors once.
@@ -150,10 +183,8 @@ impl PcgIc0 {
     /// (Re)allocates the work vectors for `n` unknowns.
     fn resize(&mut self, n: usize) {
         self.n = n;
-        for v in [&mut self.r, &mut self.q, &mut self.p, &mut self.y] {
-            v.clear();
-            v.resize(n, 0.0);
-        }
+        self.work.resize(n);
+        self.extra.clear();
     }
 
     /// Builds the factor pattern (lower and transposed upper triangle) for `a`'s pattern.
@@ -266,121 +297,133 @@ impl PcgIc0 {
         if !self.factorised {
             return Err(LinearSolverError::NotFactorised);
         }
-        let n = self.n;
-        check_len("matrix", a.n(), n)?;
-        check_len("b", b.len(), n)?;
-        check_len("x", x.len(), n)?;
-        let fac = &self.factor;
-        let rd = fac.inv_diag();
-        let (r, q, p, w) = (
-            &mut self.r[..],
-            &mut self.q[..],
-            &mut self.p[..],
-            &mut self.y[..],
-        );
+        pcg(&self.factor, self.n, a, b, x, params, &mut self.work)
+    }
+}
 
-        let r0 = a.residual(b, x, r);
-        if !r0.is_finite() {
-            return Err(LinearSolverError::NonFinite {
-                what: "initial residual",
+/// IC(0)-PCG with the factor `fac` of an `n` × `n` matrix and the work
+/// vectors `work` (see the module documentation).
+fn pcg(
+    fac: &SplitFactor,
+    n: usize,
+    a: &CsrMatrix,
+    b: &[f64],
+    x: &mut [f64],
+    params: &PcgParams,
+    work: &mut PcgWork,
+) -> Result<SolveInfo, LinearSolverError> {
+    check_len("matrix", a.n(), n)?;
+    check_len("b", b.len(), n)?;
+    check_len("x", x.len(), n)?;
+    let rd = fac.inv_diag();
+    let (r, q, p, w) = (
+        &mut work.r[..],
+        &mut work.q[..],
+        &mut work.p[..],
+        &mut work.y[..],
+    );
+
+    let r0 = a.residual(b, x, r);
+    if !r0.is_finite() {
+        return Err(LinearSolverError::NonFinite {
+            what: "initial residual",
+        });
+    }
+    let mut info = SolveInfo {
+        iterations: 0,
+        initial_residual: r0,
+        final_residual: r0,
+        converged: r0 == 0.0,
+    };
+    let target = params.tolerance * r0;
+    if info.converged || params.max_iterations == 0 {
+        return Ok(info);
+    }
+
+    // Forward sweep w = (D̃ + E)⁻¹ r and rᵀz = Σ t w.
+    let mut rz = 0.0;
+    let mut w_prev = 0.0;
+    for i in 0..n {
+        let t = fac.forward_row(i, r[i], w, w_prev);
+        let wi = t * rd[i];
+        w[i] = wi;
+        w_prev = wi;
+        rz += t * wi;
+    }
+    let mut beta = 0.0;
+    let mut alpha = 0.0; // x += α p is deferred to the next backward pass (or the exit)
+    for it in 1..=params.max_iterations {
+        // Backward pass, rows descending: z = (I + U_b)⁻¹ w (in place), x += α p_old,
+        // p = z + β p_old, and trailing behind it q = A p, pᵀq.
+        let mut pq = 0.0;
+        let mut m = n; // rows m..n of q are done
+        let mut z_next = 0.0;
+        for i in (0..n).rev() {
+            let zi = fac.backward_row(i, w[i], w, z_next);
+            w[i] = zi;
+            z_next = zi;
+            let p_old = p[i];
+            if it == 1 {
+                p[i] = zi;
+            } else {
+                x[i] += alpha * p_old;
+                p[i] = zi + beta * p_old;
+            }
+            // p[i..n] is final: row m − 1 can be multiplied once its lowest column is ≥ i.
+            while m > 0 && a.min_col(m - 1) >= i {
+                m -= 1;
+                let qm = a.row_times(m, p);
+                q[m] = qm;
+                pq += p[m] * qm;
+            }
+        }
+        if !(pq > 0.0) {
+            return Err(if pq.is_finite() {
+                LinearSolverError::Breakdown {
+                    method: "PCG",
+                    iteration: it,
+                    reason: "pᵀAp ≤ 0: matrix not positive definite",
+                }
+            } else {
+                LinearSolverError::NonFinite {
+                    what: "PCG iteration",
+                }
             });
         }
-        let mut info = SolveInfo {
-            iterations: 0,
-            initial_residual: r0,
-            final_residual: r0,
-            converged: r0 == 0.0,
-        };
-        let target = params.tolerance * r0;
-        if info.converged || params.max_iterations == 0 {
-            return Ok(info);
-        }
-
-        // Forward sweep w = (D̃ + E)⁻¹ r and rᵀz = Σ t w.
-        let mut rz = 0.0;
+        alpha = rz / pq;
+        // Forward pass, rows ascending: r −= α q, ‖r‖², w = (D̃ + E)⁻¹ r, rᵀz.
+        let mut rr = 0.0;
+        let mut rz_new = 0.0;
         let mut w_prev = 0.0;
         for i in 0..n {
-            let t = fac.forward_row(i, r[i], w, w_prev);
+            let ri = r[i] - alpha * q[i];
+            r[i] = ri;
+            rr += ri * ri;
+            let t = fac.forward_row(i, ri, w, w_prev);
             let wi = t * rd[i];
             w[i] = wi;
             w_prev = wi;
-            rz += t * wi;
+            rz_new += t * wi;
         }
-        let mut beta = 0.0;
-        let mut alpha = 0.0; // x += α p is deferred to the next backward pass (or the exit)
-        for it in 1..=params.max_iterations {
-            // Backward pass, rows descending: z = (I + U_b)⁻¹ w (in place), x += α p_old,
-            // p = z + β p_old, and trailing behind it q = A p, pᵀq.
-            let mut pq = 0.0;
-            let mut m = n; // rows m..n of q are done
-            let mut z_next = 0.0;
-            for i in (0..n).rev() {
-                let zi = fac.backward_row(i, w[i], w, z_next);
-                w[i] = zi;
-                z_next = zi;
-                let p_old = p[i];
-                if it == 1 {
-                    p[i] = zi;
-                } else {
-                    x[i] += alpha * p_old;
-                    p[i] = zi + beta * p_old;
-                }
-                // p[i..n] is final: row m − 1 can be multiplied once its lowest column is ≥ i.
-                while m > 0 && a.min_col(m - 1) >= i {
-                    m -= 1;
-                    let qm = a.row_times(m, p);
-                    q[m] = qm;
-                    pq += p[m] * qm;
-                }
-            }
-            if !(pq > 0.0) {
-                return Err(if pq.is_finite() {
-                    LinearSolverError::Breakdown {
-                        method: "PCG",
-                        iteration: it,
-                        reason: "pᵀAp ≤ 0: matrix not positive definite",
-                    }
-                } else {
-                    LinearSolverError::NonFinite {
-                        what: "PCG iteration",
-                    }
-                });
-            }
-            alpha = rz / pq;
-            // Forward pass, rows ascending: r −= α q, ‖r‖², w = (D̃ + E)⁻¹ r, rᵀz.
-            let mut rr = 0.0;
-            let mut rz_new = 0.0;
-            let mut w_prev = 0.0;
-            for i in 0..n {
-                let ri = r[i] - alpha * q[i];
-                r[i] = ri;
-                rr += ri * ri;
-                let t = fac.forward_row(i, ri, w, w_prev);
-                let wi = t * rd[i];
-                w[i] = wi;
-                w_prev = wi;
-                rz_new += t * wi;
-            }
-            let rn = rr.sqrt();
-            info.iterations = it;
-            info.final_residual = rn;
-            if !rn.is_finite() {
-                return Err(LinearSolverError::NonFinite {
-                    what: "PCG residual",
-                });
-            }
-            if rn <= target || it == params.max_iterations {
-                for (xi, &pi) in x.iter_mut().zip(p.iter()) {
-                    *xi += alpha * pi;
-                }
-                info.converged = rn <= target;
-                return Ok(info);
-            }
-            beta = rz_new / rz;
-            rz = rz_new;
+        let rn = rr.sqrt();
+        info.iterations = it;
+        info.final_residual = rn;
+        if !rn.is_finite() {
+            return Err(LinearSolverError::NonFinite {
+                what: "PCG residual",
+            });
         }
-        Ok(info)
+        if rn <= target || it == params.max_iterations {
+            for (xi, &pi) in x.iter_mut().zip(p.iter()) {
+                *xi += alpha * pi;
+            }
+            info.converged = rn <= target;
+            return Ok(info);
+        }
+        beta = rz_new / rz;
+        rz = rz_new;
     }
+    Ok(info)
 }
 
 impl LinearSolver for PcgIc0 {
@@ -396,6 +439,51 @@ impl LinearSolver for PcgIc0 {
     ) -> Result<SolveInfo, LinearSolverError> {
         let params = self.params;
         PcgIc0::solve(self, a, b, x, &params)
+    }
+
+    /// The right-hand sides side by side on the thread pool, each with its
+    /// own work vectors and the one factorisation (the same answers as one
+    /// after the other, to the bit).
+    fn solve_each(
+        &mut self,
+        a: &CsrMatrix,
+        b: &[&[f64]],
+        x: &mut [&mut [f64]],
+        info: &mut [SolveInfo],
+    ) -> Result<(), LinearSolverError> {
+        let k = b.len();
+        check_len("right-hand sides", x.len(), k)?;
+        check_len("infos", info.len(), k)?;
+        if !(2..=MAX_SIDE_BY_SIDE).contains(&k)
+            || self.n < PARALLEL_ROWS
+            || rayon::current_num_threads() < 2
+        {
+            for ((b, x), i) in b.iter().zip(x.iter_mut()).zip(info.iter_mut()) {
+                *i = LinearSolver::solve(self, a, b, x)?;
+            }
+            return Ok(());
+        }
+        if !self.factorised {
+            return Err(LinearSolverError::NotFactorised);
+        }
+        let n = self.n;
+        while self.extra.len() + 1 < k {
+            self.extra.push(PcgWork::new(n));
+        }
+        let (fac, params) = (&self.factor, self.params);
+        let mut results: [Result<SolveInfo, LinearSolverError>; MAX_SIDE_BY_SIDE] =
+            std::array::from_fn(|_| Ok(SolveInfo::default()));
+        let works = std::iter::once(&mut self.work).chain(self.extra.iter_mut());
+        rayon::scope(|s| {
+            for (((b, x), work), result) in b.iter().zip(x.iter_mut()).zip(works).zip(&mut results)
+            {
+                s.spawn(move |_| *result = pcg(fac, n, a, b, x, &params, work));
+            }
+        });
+        for (result, i) in results.into_iter().zip(info.iter_mut()) {
+            *i = result?;
+        }
+        Ok(())
     }
 
     /// z = (D̃ + Eᵀ)⁻¹ D̃ (D̃ + E)⁻¹ r: one forward and one backward sweep.
@@ -473,6 +561,45 @@ mod tests {
         let a = laplacian(20, 20, 20, 1e-3);
         let (it, it_t) = check(&a, 1);
         assert!(it < 60 && it_t < 150, "{it} {it_t}");
+    }
+
+    /// Three right-hand sides side by side (8,000 unknowns: above
+    /// `PARALLEL_ROWS`, so on the pool when it has two threads or more)
+    /// give, to the bit, the answers of three solves one after the other,
+    /// and the work vectors of the side-by-side solves are reused.
+    #[test]
+    fn solve_each_equals_one_after_the_other() {
+        let a = laplacian(20, 20, 20, 1e-3);
+        let n = a.n();
+        assert!(n >= PARALLEL_ROWS);
+        let b: Vec<Vec<f64>> = (0..3).map(|k| rhs(n, 10 + k)).collect();
+        let mut s = PcgIc0::new(n);
+        s.factorise(&a).unwrap();
+        let mut alone = Vec::new();
+        for bk in &b {
+            let mut x = vec![0.0; n];
+            let info = LinearSolver::solve(&mut s, &a, bk, &mut x).unwrap();
+            alone.push((x, info));
+        }
+        for _ in 0..2 {
+            let mut x: Vec<Vec<f64>> = vec![vec![0.0; n]; 3];
+            let mut info = [SolveInfo::default(); 3];
+            let bs: Vec<&[f64]> = b.iter().map(|v| v.as_slice()).collect();
+            let mut xs: Vec<&mut [f64]> = x.iter_mut().map(|v| v.as_mut_slice()).collect();
+            s.solve_each(&a, &bs, &mut xs, &mut info).unwrap();
+            for (k, (xa, ia)) in alone.iter().enumerate() {
+                assert!(info[k].converged && info[k].iterations > 5, "{:?}", info[k]);
+                assert_eq!(&info[k], ia);
+                assert!(x[k].iter().zip(xa).all(|(p, q)| p.to_bits() == q.to_bits()));
+            }
+        }
+        assert!(s.extra.len() <= 2);
+        // mismatched counts are an error, not a panic
+        let mut x0 = vec![0.0; n];
+        let mut xs: Vec<&mut [f64]> = vec![x0.as_mut_slice()];
+        let bs: Vec<&[f64]> = b.iter().map(|v| v.as_slice()).collect();
+        let mut info = [SolveInfo::default(); 3];
+        assert!(s.solve_each(&a, &bs, &mut xs, &mut info).is_err());
     }
 
     #[test]

@@ -8,7 +8,9 @@ use crate::coupled_spring_solve::CoupledSpringSolve;
 use crate::model::Body;
 use crate::predictor::{LinearPredictor, PathChange};
 use crate::profile::{Phase, PhaseTimes};
-use fv_discretise::{CsrMatrix, FaceSlots, LinearSolver, LinearSolverError, MomentumParams};
+use fv_discretise::{
+    CsrMatrix, FaceSlots, LinearSolver, LinearSolverError, MomentumParams, SolveInfo,
+};
 use fv_mesh::Vector;
 use std::time::Instant;
 
@@ -37,6 +39,11 @@ const ANDERSON_CONTACT_SETTLED: f64 = 1e-4;
 /// 1e-3 it outweighed the tangential springs of parallel-cylinders and the
 /// rigid mode crept (415 outer iterations instead of 162 in increment 1).
 const FLOATING_STABILISATION: f64 = 1e-5;
+
+/// Components with matrices of their own are solved side by side from this
+/// many unknowns (below, handing them to the thread pool costs more than it
+/// saves).
+const PARALLEL_COMPONENT_ROWS: usize = 4096;
 
 /// Outcome of one load increment.
 #[derive(Debug, Clone, Copy, Default)]
@@ -89,6 +96,10 @@ pub struct SegregatedSolver {
     slots: FaceSlots,
     rhs: Vec<f64>,
     x: Vec<f64>,
+    /// Right-hand sides and solutions of the components that share a
+    /// matrix, solved side by side (`LinearSolver::solve_each`).
+    rhs_each: [Vec<f64>; 3],
+    x_each: [Vec<f64>; 3],
     delta: Vec<Vector>,
     /// Displacement at the start of the increment (global numbering).
     u_start: Vec<Vector>,
@@ -231,6 +242,8 @@ impl SegregatedSolver {
             slots,
             rhs: vec![0.0; n],
             x: vec![0.0; n],
+            rhs_each: std::array::from_fn(|_| vec![0.0; n]),
+            x_each: std::array::from_fn(|_| vec![0.0; n]),
             delta: vec![Vector::zeros(); n],
             u_start: vec![Vector::zeros(); n],
             length_scale,
@@ -647,21 +660,7 @@ impl SegregatedSolver {
         if self.springs.iter().any(|s| s.coupled) {
             linear_iterations += self.solve_coupled(bodies)?;
         } else {
-            for c in 0..3 {
-                let Some(mi) = self.component_matrix[c] else {
-                    self.delta.iter_mut().for_each(|d| d[c] = 0.0);
-                    continue;
-                };
-                gather_residual(bodies, c, &mut self.rhs);
-                self.x.iter_mut().for_each(|x| *x = 0.0);
-                let start = Instant::now();
-                let si = self.solvers[mi].solve(&self.matrices[mi], &self.rhs, &mut self.x)?;
-                self.times.lap(Phase::LinearSolve, start);
-                linear_iterations += si.iterations;
-                for (d, &x) in self.delta.iter_mut().zip(&self.x) {
-                    d[c] = x;
-                }
-            }
+            linear_iterations += self.solve_components(bodies)?;
         }
         let mut norm_delta = 0.0;
         let mut norm_incr = 0.0;
@@ -698,6 +697,105 @@ impl SegregatedSolver {
             .max(RESIDUAL_TOTAL_FRACTION * norm_total.sqrt())
             .max(floor);
         Ok((norm_delta.sqrt() / reference, linear_iterations))
+    }
+
+    /// The correction of every solved component, one linear solve each.
+    /// Components that share a matrix share its one factorisation and are
+    /// solved side by side by its solver (`LinearSolver::solve_each`);
+    /// components with their own matrices (the contact springs differ per
+    /// component) are solved side by side on the thread pool from
+    /// [`PARALLEL_COMPONENT_ROWS`] unknowns. Each solve is the one it would
+    /// be alone, so the results do not depend on the number of threads.
+    /// Returns the linear iterations.
+    fn solve_components(&mut self, bodies: &[Body]) -> Result<usize, SolveError> {
+        // jobs: one per matrix, with the components it solves
+        let mut job_matrix = [usize::MAX; 3];
+        let mut job_components = [[0usize; 3]; 3];
+        let mut job_len = [0usize; 3];
+        let mut jobs = 0;
+        for c in 0..3 {
+            let Some(mi) = self.component_matrix[c] else {
+                self.delta.iter_mut().for_each(|d| d[c] = 0.0);
+                continue;
+            };
+            let j = match job_matrix[..jobs].iter().position(|&m| m == mi) {
+                Some(j) => j,
+                None => {
+                    job_matrix[jobs] = mi;
+                    jobs += 1;
+                    jobs - 1
+                }
+            };
+            job_components[j][job_len[j]] = c;
+            job_len[j] += 1;
+            gather_residual(bodies, c, &mut self.rhs_each[c]);
+            self.x_each[c].iter_mut().for_each(|x| *x = 0.0);
+        }
+        let mut infos = [SolveInfo::default(); 3];
+        let start = Instant::now();
+        let [r0, r1, r2] = &self.rhs_each;
+        let rhs: [&[f64]; 3] = [r0, r1, r2];
+        let [x0, x1, x2] = &mut self.x_each;
+        let mut x: [Option<&mut [f64]>; 3] = [Some(x0), Some(x1), Some(x2)];
+        let side_by_side =
+            jobs > 1 && self.n >= PARALLEL_COMPONENT_ROWS && rayon::current_num_threads() > 1;
+        let mut results: [Result<(), LinearSolverError>; 3] = std::array::from_fn(|_| Ok(()));
+        let [q0, q1, q2] = &mut results;
+        let mut result_of: [Option<&mut Result<(), LinearSolverError>>; 3] =
+            [Some(q0), Some(q1), Some(q2)];
+        let (matrices, solvers) = (&self.matrices, &mut self.solvers);
+        let [i0, i1, i2] = &mut infos;
+        let mut info: [Option<&mut SolveInfo>; 3] = [Some(i0), Some(i1), Some(i2)];
+        // in place: without spawns nothing is handed to the pool
+        rayon::in_place_scope(|s| {
+            for (mi, solver) in solvers.iter_mut().enumerate() {
+                let Some(j) = job_matrix[..jobs].iter().position(|&m| m == mi) else {
+                    continue;
+                };
+                let comps = &job_components[j][..job_len[j]];
+                let mut b: [&[f64]; 3] = [&[]; 3];
+                let mut xs: [&mut [f64]; 3] = [&mut [], &mut [], &mut []];
+                let mut is: [SolveInfo; 3] = [SolveInfo::default(); 3];
+                let mut outs: [Option<&mut SolveInfo>; 3] = [None, None, None];
+                for (k, &c) in comps.iter().enumerate() {
+                    b[k] = rhs[c];
+                    xs[k] = x[c].take().unwrap_or_default();
+                    outs[k] = info[c].take();
+                }
+                let a = &matrices[mi];
+                let Some(result) = result_of[j].take() else {
+                    continue;
+                };
+                let n = comps.len();
+                let mut job = move || {
+                    *result = solver.solve_each(a, &b[..n], &mut xs[..n], &mut is[..n]);
+                    for (o, i) in outs.iter_mut().zip(is) {
+                        if let Some(o) = o {
+                            **o = i;
+                        }
+                    }
+                };
+                if side_by_side {
+                    s.spawn(move |_| job());
+                } else {
+                    job();
+                }
+            }
+        });
+        self.times.lap(Phase::LinearSolve, start);
+        for r in results {
+            r?;
+        }
+        let mut linear_iterations = 0;
+        for c in 0..3 {
+            if self.component_matrix[c].is_some() {
+                linear_iterations += infos[c].iterations;
+                for (d, &x) in self.delta.iter_mut().zip(&self.x_each[c]) {
+                    d[c] = x;
+                }
+            }
+        }
+        Ok(linear_iterations)
     }
 
     /// The correction of all components at once with the contact springs'

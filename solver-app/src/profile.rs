@@ -69,6 +69,11 @@ impl PhaseTimes {
         now
     }
 
+    /// Adds `seconds` to `phase`.
+    pub fn add(&mut self, phase: Phase, seconds: f64) {
+        self.seconds[phase as usize] += seconds;
+    }
+
     /// Seconds of `phase`.
     pub fn get(&self, phase: Phase) -> f64 {
         self.seconds[phase as usize]

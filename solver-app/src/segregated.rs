@@ -45,6 +45,11 @@ const FLOATING_STABILISATION: f64 = 1e-5;
 /// saves).
 const PARALLEL_COMPONENT_ROWS: usize = 4096;
 
+/// Two or more deformable bodies are updated side by side (boundary
+/// values, gradient and stress, residual) when the smallest has this many
+/// cells.
+const PARALLEL_BODY_CELLS: usize = 2048;
+
 /// Outcome of one load increment.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct IncrementInfo {
@@ -100,6 +105,8 @@ pub struct SegregatedSolver {
     /// matrix, solved side by side (`LinearSolver::solve_each`).
     rhs_each: [Vec<f64>; 3],
     x_each: [Vec<f64>; 3],
+    /// Per-body reports of the bodies updated side by side.
+    body_updates: Vec<BodyUpdate>,
     delta: Vec<Vector>,
     /// Displacement at the start of the increment (global numbering).
     u_start: Vec<Vector>,
@@ -244,6 +251,7 @@ impl SegregatedSolver {
             x: vec![0.0; n],
             rhs_each: std::array::from_fn(|_| vec![0.0; n]),
             x_each: std::array::from_fn(|_| vec![0.0; n]),
+            body_updates: Vec::new(),
             delta: vec![Vector::zeros(); n],
             u_start: vec![Vector::zeros(); n],
             length_scale,
@@ -837,24 +845,64 @@ impl SegregatedSolver {
     /// if any (its previous stress is kept; see
     /// [`fv_discretise::SolidMomentum::update_gradient_and_stress`]).
     pub fn update_fields(&mut self, bodies: &mut [Body]) -> Result<Option<String>, SolveError> {
-        let mut inverted = None;
-        for b in bodies.iter_mut().filter(|b| !b.rigid) {
-            let m = &mut b.momentum;
+        let params = &self.params;
+        let smallest = bodies
+            .iter()
+            .filter(|b| !b.rigid)
+            .map(|b| b.mesh.n_cells)
+            .min()
+            .unwrap_or(0);
+        let deformable = bodies.iter().filter(|b| !b.rigid).count();
+        if deformable > 1 && smallest >= PARALLEL_BODY_CELLS && rayon::current_num_threads() > 1 {
+            // the bodies side by side: each body's phases are timed on its
+            // thread, and the wall time is shared out among the phases in
+            // proportion
+            use rayon::prelude::*;
             let start = Instant::now();
-            m.update_boundary_values(&b.mesh, &b.geom);
-            let start = self.times.lap(Phase::BoundaryValues, start);
-            let bad = m.update_gradient_and_stress(&b.mesh);
-            let start = self.times.lap(Phase::GradientAndStress, start);
-            if let Some((cell, jacobian)) = bad {
-                inverted.get_or_insert_with(|| {
-                    format!(
-                        "body '{}': cell {cell}: relative Jacobian det f = {jacobian:.3e} is not positive (the increment inverts the cell; use more steps)",
-                        b.name
-                    )
-                });
+            self.body_updates
+                .resize(bodies.len(), BodyUpdate::default());
+            bodies
+                .par_iter_mut()
+                .zip(self.body_updates.par_iter_mut())
+                .for_each(|(b, out)| *out = update_body_fields(b, params));
+            let wall = start.elapsed().as_secs_f64();
+            let mut seconds = [0.0; 3];
+            for u in &self.body_updates {
+                for (s, d) in seconds.iter_mut().zip(u.seconds) {
+                    *s += d;
+                }
             }
-            m.compute_residual(&b.mesh, &b.geom, &self.params);
-            self.times.lap(Phase::ResidualAssembly, start);
+            let total: f64 = seconds.iter().sum();
+            for (phase, s) in [
+                Phase::BoundaryValues,
+                Phase::GradientAndStress,
+                Phase::ResidualAssembly,
+            ]
+            .into_iter()
+            .zip(seconds)
+            {
+                let share = if total > 0.0 { s / total } else { 1.0 / 3.0 };
+                self.times.add(phase, wall * share);
+            }
+            let inverted = self.body_updates.iter_mut().find_map(|u| u.inverted.take());
+            return Ok(inverted);
+        }
+        let mut inverted = None;
+        for b in bodies.iter_mut() {
+            let u = update_body_fields(b, params);
+            for (phase, s) in [
+                Phase::BoundaryValues,
+                Phase::GradientAndStress,
+                Phase::ResidualAssembly,
+            ]
+            .into_iter()
+            .zip(u.seconds)
+            {
+                self.times.add(phase, s);
+            }
+            if inverted.is_none() {
+                inverted = u.inverted;
+            }
         }
         Ok(inverted)
     }
@@ -908,7 +956,9 @@ impl SegregatedSolver {
                     continue;
                 }
             }
-            if residual < self.tolerance && self.contact_settled() {
+            if residual < self.tolerance * contacts.explicit_relaxation_fraction()
+                && self.contact_settled()
+            {
                 info.converged = true;
                 break;
             }
@@ -929,4 +979,41 @@ impl SegregatedSolver {
         }
         Ok(info)
     }
+}
+
+/// What [`update_body_fields`] reports: seconds in boundary values,
+/// gradient and stress, residual; the first inverted cell, if any.
+#[derive(Debug, Clone, Default)]
+struct BodyUpdate {
+    seconds: [f64; 3],
+    inverted: Option<String>,
+}
+
+/// Boundary values, gradient and stress, and force residual of one body
+/// from its current displacement (nothing for a rigid body).
+fn update_body_fields(b: &mut Body, params: &MomentumParams) -> BodyUpdate {
+    let mut out = BodyUpdate::default();
+    if b.rigid {
+        return out;
+    }
+    let m = &mut b.momentum;
+    let t0 = Instant::now();
+    m.update_boundary_values(&b.mesh, &b.geom);
+    let t1 = Instant::now();
+    let bad = m.update_gradient_and_stress(&b.mesh);
+    let t2 = Instant::now();
+    if let Some((cell, jacobian)) = bad {
+        out.inverted = Some(format!(
+            "body '{}': cell {cell}: relative Jacobian det f = {jacobian:.3e} is not positive (the increment inverts the cell; use more steps)",
+            b.name
+        ));
+    }
+    m.compute_residual(&b.mesh, &b.geom, params);
+    let t3 = Instant::now();
+    out.seconds = [
+        (t1 - t0).as_secs_f64(),
+        (t2 - t1).as_secs_f64(),
+        (t3 - t2).as_secs_f64(),
+    ];
+    out
 }

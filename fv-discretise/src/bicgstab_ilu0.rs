@@ -24,7 +24,7 @@
 
 use crate::csr::{CsrMatrix, SplitFactor};
 use crate::linear_solver::{
-    check_len, FactorisationInfo, LinearSolver, LinearSolverError, SolveInfo,
+    check_len, krylov_start, FactorisationInfo, LinearSolver, LinearSolverError, SolveInfo,
 };
 
 /// First relative diagonal shift tried after an ILU(0) pivot breakdown.
@@ -274,22 +274,11 @@ impl BicgstabIlu0 {
             &mut self.t[..],
         );
 
-        let r0 = a.residual(b, x, r);
-        if !r0.is_finite() {
-            return Err(LinearSolverError::NonFinite {
-                what: "initial residual",
-            });
-        }
-        let mut info = SolveInfo {
-            iterations: 0,
-            initial_residual: r0,
-            final_residual: r0,
-            converged: r0 == 0.0,
-        };
-        let target = params.tolerance * r0;
-        if info.converged || params.max_iterations == 0 {
+        let (mut info, target) = krylov_start(a, b, x, r, params.tolerance, params.max_iterations)?;
+        let Some(target) = target else {
             return Ok(info);
-        }
+        };
+        let r0 = info.initial_residual;
         rhat.copy_from_slice(r);
         let mut rr = r0 * r0;
         let mut rho_new = rr; // r̂ᵀr

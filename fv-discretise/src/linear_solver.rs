@@ -148,12 +148,7 @@ pub trait LinearSolver {
         x: &mut [&mut [f64]],
         info: &mut [SolveInfo],
     ) -> Result<(), LinearSolverError> {
-        check_len("right-hand sides", x.len(), b.len())?;
-        check_len("infos", info.len(), b.len())?;
-        for ((b, x), i) in b.iter().zip(x.iter_mut()).zip(info.iter_mut()) {
-            *i = self.solve(a, b, x)?;
-        }
-        Ok(())
+        solve_in_turn(self, a, b, x, info)
     }
 
     /// Applies the preconditioner of the last factorisation once, z = M⁻¹ r
@@ -165,6 +160,50 @@ pub trait LinearSolver {
         let _ = (r, z);
         Ok(false)
     }
+}
+
+/// [`LinearSolver::solve_each`] one right-hand side after the other.
+pub fn solve_in_turn<S: LinearSolver + ?Sized>(
+    solver: &mut S,
+    a: &CsrMatrix,
+    b: &[&[f64]],
+    x: &mut [&mut [f64]],
+    info: &mut [SolveInfo],
+) -> Result<(), LinearSolverError> {
+    check_len("right-hand sides", x.len(), b.len())?;
+    check_len("infos", info.len(), b.len())?;
+    for ((b, x), i) in b.iter().zip(x.iter_mut()).zip(info.iter_mut()) {
+        *i = solver.solve(a, b, x)?;
+    }
+    Ok(())
+}
+
+/// The start of a Krylov solve: the initial residual `r = b − A x` and the
+/// report of a solve that has not iterated yet, with the absolute target
+/// `tolerance · ‖r₀‖`. `None` for the target when there is nothing to do
+/// (`x` already exact, or no iterations allowed).
+pub(crate) fn krylov_start(
+    a: &CsrMatrix,
+    b: &[f64],
+    x: &[f64],
+    r: &mut [f64],
+    tolerance: f64,
+    max_iterations: usize,
+) -> Result<(SolveInfo, Option<f64>), LinearSolverError> {
+    let r0 = a.residual(b, x, r);
+    if !r0.is_finite() {
+        return Err(LinearSolverError::NonFinite {
+            what: "initial residual",
+        });
+    }
+    let info = SolveInfo {
+        iterations: 0,
+        initial_residual: r0,
+        final_residual: r0,
+        converged: r0 == 0.0,
+    };
+    let target = (!info.converged && max_iterations > 0).then_some(tolerance * r0);
+    Ok((info, target))
 }
 
 /// Checks that a slice has length `n`.

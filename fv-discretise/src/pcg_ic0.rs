@@ -56,7 +56,8 @@
 
 use crate::csr::{CsrMatrix, SplitFactor};
 use crate::linear_solver::{
-    check_len, FactorisationInfo, LinearSolver, LinearSolverError, SolveInfo,
+    check_len, krylov_start, solve_in_turn, FactorisationInfo, LinearSolver, LinearSolverError,
+    SolveInfo,
 };
 
 /// First relative diagonal shift tried after an IC(0) breakdown.
@@ -323,22 +324,10 @@ fn pcg(
         &mut work.y[..],
     );
 
-    let r0 = a.residual(b, x, r);
-    if !r0.is_finite() {
-        return Err(LinearSolverError::NonFinite {
-            what: "initial residual",
-        });
-    }
-    let mut info = SolveInfo {
-        iterations: 0,
-        initial_residual: r0,
-        final_residual: r0,
-        converged: r0 == 0.0,
-    };
-    let target = params.tolerance * r0;
-    if info.converged || params.max_iterations == 0 {
+    let (mut info, target) = krylov_start(a, b, x, r, params.tolerance, params.max_iterations)?;
+    let Some(target) = target else {
         return Ok(info);
-    }
+    };
 
     // Forward sweep w = (D̃ + E)⁻¹ r and rᵀz = Σ t w.
     let mut rz = 0.0;
@@ -458,10 +447,7 @@ impl LinearSolver for PcgIc0 {
             || self.n < PARALLEL_ROWS
             || rayon::current_num_threads() < 2
         {
-            for ((b, x), i) in b.iter().zip(x.iter_mut()).zip(info.iter_mut()) {
-                *i = LinearSolver::solve(self, a, b, x)?;
-            }
-            return Ok(());
+            return solve_in_turn(self, a, b, x, info);
         }
         if !self.factorised {
             return Err(LinearSolverError::NotFactorised);

@@ -441,14 +441,14 @@ impl LinearSolver for PcgIc0 {
         info: &mut [SolveInfo],
     ) -> Result<(), LinearSolverError> {
         let k = b.len();
-        check_len("right-hand sides", x.len(), k)?;
-        check_len("infos", info.len(), k)?;
         if !(2..=MAX_SIDE_BY_SIDE).contains(&k)
             || self.n < PARALLEL_ROWS
             || rayon::current_num_threads() < 2
         {
             return solve_in_turn(self, a, b, x, info);
         }
+        check_len("right-hand sides", x.len(), k)?;
+        check_len("infos", info.len(), k)?;
         if !self.factorised {
             return Err(LinearSolverError::NotFactorised);
         }

@@ -408,13 +408,14 @@ pub struct ContactInterface {
     normal_relaxation: f64,
     normal_damping: f64,
     /// Smallest relative change of the applied tractions in the last
-    /// window of [`NORMAL_STALL_PATIENCE`] contact updates and in the
-    /// current one, and the updates of the current one.
+    /// window of [`NORMAL_STALL_PATIENCE`] contact updates, and in the
+    /// current window; the updates of the current window.
     best_change: f64,
-    stalled: usize,
     window_min: f64,
-    /// The computed normal force's last change, and how often its sign
-    /// flipped during the stall (an oscillation, not a slow approach).
+    window_updates: usize,
+    /// The computed normal force, its last change, and how often the
+    /// change flipped sign in the current window (an oscillation, not a
+    /// slow approach).
     last_force: f64,
     last_force_change: f64,
     flips: usize,
@@ -555,11 +556,13 @@ impl ContactInterface {
 }
 
 impl ContactInterface {
-    /// Explicit coupling: records the relative change `change` of the
-    /// applied tractions of this contact update, and halves the normal
-    /// relaxation after [`NORMAL_STALL_PATIENCE`] updates without a new
-    /// smallest change (down to [`NORMAL_MIN_FRACTION`] of the configured
-    /// one).
+    /// Explicit coupling, after [`EXPLICIT_DAMPING_START`] contact updates
+    /// of the increment (`updates`): records the relative change `change`
+    /// of the applied tractions of this update, and at the end of each
+    /// window of [`NORMAL_STALL_PATIENCE`] updates halves the normal
+    /// relaxation in use (down to [`NORMAL_MIN_FRACTION`] of the configured
+    /// one; [`ContactSet::update`] applies it) if the window stalled while
+    /// the force oscillated.
     fn damp_stalled_normal_relaxation(&mut self, change: f64, updates: usize) {
         if updates <= EXPLICIT_DAMPING_START {
             return;
@@ -569,24 +572,23 @@ impl ContactInterface {
         self.flips += usize::from(force_change * self.last_force_change < 0.0);
         self.last_force_change = force_change;
         self.window_min = self.window_min.min(change);
-        self.stalled += 1;
-        if self.stalled < NORMAL_STALL_PATIENCE {
+        self.window_updates += 1;
+        if self.window_updates < NORMAL_STALL_PATIENCE {
             return;
         }
         // a window of updates that did not halve the smallest change of the
         // one before, the computed force going back and forth (a slow
         // approach neither stalls nor flips)
         let stalled = !(self.window_min <= 0.5 * self.best_change);
-        if stalled && 8 * self.flips >= self.stalled && self.normal_damping > NORMAL_MIN_FRACTION {
+        let oscillating = 8 * self.flips >= self.window_updates;
+        if stalled && oscillating && self.normal_damping > NORMAL_MIN_FRACTION {
             self.normal_damping *= 0.5;
-            self.coupling
-                .set_normal_factor(self.normal_relaxation * self.normal_damping);
             self.best_change = f64::INFINITY;
         } else {
             self.best_change = self.window_min;
         }
         self.window_min = f64::INFINITY;
-        self.stalled = 0;
+        self.window_updates = 0;
         self.flips = 0;
     }
 
@@ -752,8 +754,8 @@ impl ContactSet {
                 normal_relaxation,
                 normal_damping: 1.0,
                 best_change: f64::INFINITY,
-                stalled: 0,
                 window_min: f64::INFINITY,
+                window_updates: 0,
                 last_force: 0.0,
                 last_force_change: 0.0,
                 flips: 0,
@@ -1197,10 +1199,9 @@ impl ContactSet {
         for ci in &mut self.interfaces {
             ci.best_change = f64::INFINITY;
             ci.window_min = f64::INFINITY;
-            ci.stalled = 0;
+            ci.window_updates = 0;
             ci.flips = 0;
             ci.last_force_change = 0.0;
-
             ci.coupling_saved.clone_from(&ci.coupling);
             ci.ggi_saved.clone_from(&ci.tractions.ggi);
             for side in [&mut ci.master, &mut ci.slave] {

@@ -168,45 +168,35 @@ impl FieldOutput {
                 // a rigid body's patch may be in several pairs (a floor under
                 // two bodies): one dataset per patch, with the pairs' pressures
                 // and tractions added and the smallest gap
-                if let Some(merged) = patches
-                    .iter_mut()
-                    .find(|p| p.body == side.body && p.patch == side.patch)
+                let k = match patches
+                    .iter()
+                    .position(|p| p.body == side.body && p.patch == side.patch)
                 {
-                    for i in 0..n.min(merged.pressure.len()) {
-                        merged.pressure[i] += get(&sc.pressure, i);
-                        let t = side.applied.get(i).copied().unwrap_or_else(Vector::zeros);
-                        for (m, x) in merged.traction[i].iter_mut().zip([t.x, t.y, t.z]) {
-                            *m += x;
-                        }
-                        let g = get(&sc.gap, i);
-                        if g.is_finite() && !(merged.gap[i] <= g) {
-                            merged.gap[i] = g;
-                        }
+                    Some(k) => k,
+                    None => {
+                        patches.push(PatchBuffers {
+                            body: side.body,
+                            patch: side.patch,
+                            face_centres: s.face_centres.iter().map(|p| [p.x, p.y, p.z]).collect(),
+                            pressure: vec![0.0; n],
+                            traction: vec![[0.0; 3]; n],
+                            gap: vec![f64::NAN; n],
+                        });
+                        patches.len() - 1
                     }
-                    continue;
+                };
+                let merged = &mut patches[k];
+                for i in 0..n {
+                    merged.pressure[i] += get(&sc.pressure, i);
+                    let t = side.applied.get(i).copied().unwrap_or_else(Vector::zeros);
+                    for (m, x) in merged.traction[i].iter_mut().zip([t.x, t.y, t.z]) {
+                        *m += x;
+                    }
+                    let g = get(&sc.gap, i);
+                    if g.is_finite() && !(merged.gap[i] <= g) {
+                        merged.gap[i] = g;
+                    }
                 }
-                patches.push(PatchBuffers {
-                    body: side.body,
-                    patch: side.patch,
-                    face_centres: s.face_centres.iter().map(|p| [p.x, p.y, p.z]).collect(),
-                    pressure: (0..n).map(|i| get(&sc.pressure, i)).collect(),
-                    traction: (0..n)
-                        .map(|i| {
-                            let t = side.applied.get(i).copied().unwrap_or_else(Vector::zeros);
-                            [t.x, t.y, t.z]
-                        })
-                        .collect(),
-                    gap: (0..n)
-                        .map(|i| {
-                            let g = get(&sc.gap, i);
-                            if g.is_finite() {
-                                g
-                            } else {
-                                f64::NAN
-                            }
-                        })
-                        .collect(),
-                });
             }
         }
         let incs: Vec<BodyIncrement> = bodies

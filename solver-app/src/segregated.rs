@@ -739,7 +739,6 @@ impl SegregatedSolver {
             gather_residual(bodies, c, &mut self.rhs_each[c]);
             self.x_each[c].iter_mut().for_each(|x| *x = 0.0);
         }
-        let mut infos = [SolveInfo::default(); 3];
         let start = Instant::now();
         let [r0, r1, r2] = &self.rhs_each;
         let rhs: [&[f64]; 3] = [r0, r1, r2];
@@ -747,42 +746,31 @@ impl SegregatedSolver {
         let mut x: [Option<&mut [f64]>; 3] = [Some(x0), Some(x1), Some(x2)];
         let side_by_side =
             jobs > 1 && self.n >= PARALLEL_COMPONENT_ROWS && rayon::current_num_threads() > 1;
-        let mut results: [Result<(), LinearSolverError>; 3] = std::array::from_fn(|_| Ok(()));
-        let [q0, q1, q2] = &mut results;
-        let mut result_of: [Option<&mut Result<(), LinearSolverError>>; 3] =
-            [Some(q0), Some(q1), Some(q2)];
+        // each job's outcome and reports, in the order of its components
+        let mut outcomes: [(Result<(), LinearSolverError>, [SolveInfo; 3]); 3] =
+            std::array::from_fn(|_| (Ok(()), [SolveInfo::default(); 3]));
+        let [o0, o1, o2] = &mut outcomes;
+        let mut outcome_of = [Some(o0), Some(o1), Some(o2)];
         let (matrices, solvers) = (&self.matrices, &mut self.solvers);
-        let [i0, i1, i2] = &mut infos;
-        let mut info: [Option<&mut SolveInfo>; 3] = [Some(i0), Some(i1), Some(i2)];
         // in place: without spawns nothing is handed to the pool
         rayon::in_place_scope(|s| {
             for (mi, solver) in solvers.iter_mut().enumerate() {
                 let Some(j) = job_matrix[..jobs].iter().position(|&m| m == mi) else {
                     continue;
                 };
+                let Some((result, info)) = outcome_of[j].take() else {
+                    continue;
+                };
                 let comps = &job_components[j][..job_len[j]];
                 let mut b: [&[f64]; 3] = [&[]; 3];
                 let mut xs: [&mut [f64]; 3] = [&mut [], &mut [], &mut []];
-                let mut is: [SolveInfo; 3] = [SolveInfo::default(); 3];
-                let mut outs: [Option<&mut SolveInfo>; 3] = [None, None, None];
                 for (k, &c) in comps.iter().enumerate() {
                     b[k] = rhs[c];
                     xs[k] = x[c].take().unwrap_or_default();
-                    outs[k] = info[c].take();
                 }
-                let a = &matrices[mi];
-                let Some(result) = result_of[j].take() else {
-                    continue;
-                };
-                let n = comps.len();
-                let mut job = move || {
-                    *result = solver.solve_each(a, &b[..n], &mut xs[..n], &mut is[..n]);
-                    for (o, i) in outs.iter_mut().zip(is) {
-                        if let Some(o) = o {
-                            **o = i;
-                        }
-                    }
-                };
+                let (a, n) = (&matrices[mi], comps.len());
+                let mut job =
+                    move || *result = solver.solve_each(a, &b[..n], &mut xs[..n], &mut info[..n]);
                 if side_by_side {
                     s.spawn(move |_| job());
                 } else {
@@ -791,13 +779,11 @@ impl SegregatedSolver {
             }
         });
         self.times.lap(Phase::LinearSolve, start);
-        for r in results {
-            r?;
-        }
         let mut linear_iterations = 0;
-        for c in 0..3 {
-            if self.component_matrix[c].is_some() {
-                linear_iterations += infos[c].iterations;
+        for (j, (result, info)) in outcomes.into_iter().enumerate().take(jobs) {
+            result?;
+            for (&c, i) in job_components[j][..job_len[j]].iter().zip(info) {
+                linear_iterations += i.iterations;
                 for (d, &x) in self.delta.iter_mut().zip(&self.x_each[c]) {
                     d[c] = x;
                 }
@@ -846,65 +832,49 @@ impl SegregatedSolver {
     /// [`fv_discretise::SolidMomentum::update_gradient_and_stress`]).
     pub fn update_fields(&mut self, bodies: &mut [Body]) -> Result<Option<String>, SolveError> {
         let params = &self.params;
-        let smallest = bodies
-            .iter()
-            .filter(|b| !b.rigid)
-            .map(|b| b.mesh.n_cells)
-            .min()
-            .unwrap_or(0);
-        let deformable = bodies.iter().filter(|b| !b.rigid).count();
-        if deformable > 1 && smallest >= PARALLEL_BODY_CELLS && rayon::current_num_threads() > 1 {
-            // the bodies side by side: each body's phases are timed on its
-            // thread, and the wall time is shared out among the phases in
-            // proportion
+        let deformable = bodies.iter().filter(|b| !b.rigid);
+        let side_by_side = deformable.clone().count() > 1
+            && deformable.map(|b| b.mesh.n_cells).min().unwrap_or(0) >= PARALLEL_BODY_CELLS
+            && rayon::current_num_threads() > 1;
+        self.body_updates
+            .resize(bodies.len(), BodyUpdate::default());
+        let start = Instant::now();
+        if side_by_side {
             use rayon::prelude::*;
-            let start = Instant::now();
-            self.body_updates
-                .resize(bodies.len(), BodyUpdate::default());
             bodies
                 .par_iter_mut()
                 .zip(self.body_updates.par_iter_mut())
                 .for_each(|(b, out)| *out = update_body_fields(b, params));
-            let wall = start.elapsed().as_secs_f64();
-            let mut seconds = [0.0; 3];
-            for u in &self.body_updates {
-                for (s, d) in seconds.iter_mut().zip(u.seconds) {
-                    *s += d;
-                }
-            }
-            let total: f64 = seconds.iter().sum();
-            for (phase, s) in [
-                Phase::BoundaryValues,
-                Phase::GradientAndStress,
-                Phase::ResidualAssembly,
-            ]
-            .into_iter()
-            .zip(seconds)
-            {
-                let share = if total > 0.0 { s / total } else { 1.0 / 3.0 };
-                self.times.add(phase, wall * share);
-            }
-            let inverted = self.body_updates.iter_mut().find_map(|u| u.inverted.take());
-            return Ok(inverted);
-        }
-        let mut inverted = None;
-        for b in bodies.iter_mut() {
-            let u = update_body_fields(b, params);
-            for (phase, s) in [
-                Phase::BoundaryValues,
-                Phase::GradientAndStress,
-                Phase::ResidualAssembly,
-            ]
-            .into_iter()
-            .zip(u.seconds)
-            {
-                self.times.add(phase, s);
-            }
-            if inverted.is_none() {
-                inverted = u.inverted;
+        } else {
+            for (b, out) in bodies.iter_mut().zip(self.body_updates.iter_mut()) {
+                *out = update_body_fields(b, params);
             }
         }
-        Ok(inverted)
+        // side by side, each body's phases are timed on its thread and the
+        // wall time is shared out among the phases in proportion
+        let mut seconds = [0.0; 3];
+        for u in &self.body_updates {
+            for (s, d) in seconds.iter_mut().zip(u.seconds) {
+                *s += d;
+            }
+        }
+        let total: f64 = seconds.iter().sum();
+        let scale = if side_by_side && total > 0.0 {
+            start.elapsed().as_secs_f64() / total
+        } else {
+            1.0
+        };
+        for (phase, s) in [
+            Phase::BoundaryValues,
+            Phase::GradientAndStress,
+            Phase::ResidualAssembly,
+        ]
+        .into_iter()
+        .zip(seconds)
+        {
+            self.times.add(phase, s * scale);
+        }
+        Ok(self.body_updates.iter_mut().find_map(|u| u.inverted.take()))
     }
 
     /// Whether the contact tractions have settled enough for the

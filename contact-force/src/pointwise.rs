@@ -66,6 +66,9 @@ pub struct Pointwise {
     /// Gaps of the points of one slave face with the face shifts.
     face_gaps: Vec<Real>,
     shifts: FaceShifts,
+    /// The master's symmetry and wedge planes (point, unit normal): the
+    /// surface continues across them in its mirror or rotated image.
+    symmetry_planes: Vec<(Vector, Vector)>,
     candidates: Vec<u32>,
     master_du: Vec<Vector>,
     slave_du_hat: Vec<Vector>,
@@ -75,6 +78,10 @@ pub struct Pointwise {
     clipped: Vec<Point2>,
     clipped_values: Vec<Real>,
 }
+
+/// A point lies on a symmetry or wedge plane within this fraction of the
+/// master face's size (√area).
+const SYMMETRY_PLANE_TOLERANCE: Real = 1e-6;
 
 /// Closest point of face `f` to `x`: the orthogonal projection on the face
 /// plane if it falls inside the (convex) face, else the closest point of
@@ -190,7 +197,7 @@ impl Pointwise {
                 }
             }
             if let Some((_, g, border, m)) = best {
-                if border {
+                if border && !self.on_symmetry_plane(master, m, &x) {
                     continue;
                 }
                 self.point_gap[p] = g;
@@ -208,6 +215,31 @@ impl Pointwise {
                 }
             }
         }
+    }
+
+    /// Whether slave point `x`, whose closest point on master face `m` is on
+    /// the master surface's border, lies on a symmetry or wedge plane that
+    /// also holds that border: the surface continues across the plane in
+    /// its image, so the point is not beyond the surface. In a one-cell
+    /// wedge every slave point lies on a wedge plane next to a border edge,
+    /// and a face tilted by 10⁻⁵ put a penetrating point's projection a
+    /// rounding error outside it: points lost their gaps at random from
+    /// one outer iteration to the next, and implicit coupling under the
+    /// NAFEMS punch never converged.
+    fn on_symmetry_plane(&self, master: &Surface, m: usize, x: &Vector) -> bool {
+        let size = master.face_mag[m].sqrt();
+        let tol = SYMMETRY_PLANE_TOLERANCE * size;
+        let fp = master.face(m);
+        let edges = master.face_edge_ids(m);
+        self.symmetry_planes.iter().any(|(origin, n)| {
+            let on = |y: &Vector| (y - origin).dot(n).abs() <= tol;
+            on(x)
+                && (0..fp.len()).any(|i| {
+                    master.is_border_edge(edges[i] as usize)
+                        && on(&master.points[fp[i] as usize])
+                        && on(&master.points[fp[(i + 1) % fp.len()] as usize])
+                })
+        })
     }
 
     /// The gaps of the points of slave face `s` into `self.face_gaps`, each
@@ -449,6 +481,13 @@ impl ContactAlgorithm for Pointwise {
     }
 
     fn set_symmetry_planes(&mut self, planes: &[contact_smooth::SymmetryPlane]) {
+        self.symmetry_planes = planes
+            .iter()
+            .filter_map(|p| {
+                let n = p.normal.try_normalize(0.0)?;
+                Some((p.origin, n))
+            })
+            .collect();
         if let Some(sm) = self.smoothing.as_mut() {
             sm.set_symmetry_planes(planes);
         }

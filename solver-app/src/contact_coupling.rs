@@ -305,8 +305,11 @@ fn transmitted_forces(
     stats.slave_force = total_s;
 }
 
-/// The planar `symmetry` patches of a body as planes (for the point normals
-/// of a smoothed master, thesis Fig. 4.40); a curved one is left out.
+/// The planar `symmetry` and `wedge` patches of a body as planes: a
+/// smoothed master's point normals lie in them (thesis Fig. 4.40; on a
+/// wedge plane the axisymmetric normal lies in the plane as well), and the
+/// pointwise algorithm does not count the master's edges on them as the
+/// surface's border. A curved one is left out.
 fn symmetry_planes(body: &Body) -> Vec<SymmetryPlane> {
     let g = &body.geom;
     let mut planes = Vec::new();
@@ -314,7 +317,7 @@ fn symmetry_planes(body: &Body) -> Vec<SymmetryPlane> {
         let Some(first) = p.faces().next() else {
             continue;
         };
-        if !matches!(cond, PatchCondition::Symmetry) {
+        if !matches!(cond, PatchCondition::Symmetry | PatchCondition::Wedge(_)) {
             continue;
         }
         let (c0, n0) = (g.face_centres[first], g.face_normals[first]);
@@ -599,7 +602,26 @@ impl ContactInterface {
             (&mut self.master, &self.tractions.master),
             (&mut self.slave, &self.tractions.slave),
         ] {
-            for (b, &c) in side.beta.iter_mut().zip(&fraction.contact_fraction) {
+            let touch = std::env::var("FVC_TOUCH")
+                .ok()
+                .and_then(|v| v.parse::<f64>().ok());
+            for (i, (b, &c)) in side
+                .beta
+                .iter_mut()
+                .zip(&fraction.contact_fraction)
+                .enumerate()
+            {
+                let g = fraction.gap[i];
+                let c = match touch {
+                    Some(t)
+                        if c == 0.0
+                            && g.is_finite()
+                            && g <= t * side.surface.face_mag[i].sqrt() =>
+                    {
+                        1.0
+                    }
+                    _ => c,
+                };
                 let kept = *b * memory;
                 *b = if kept < BETA_FLOOR { c } else { kept.max(c) };
             }

@@ -223,21 +223,50 @@ fn build(t: &Table<'_>, source: CaseSource) -> Res<Case> {
         for item in tables(&c.node(), "contact")? {
             let node = item.node();
             let spec = contact::contact(&node, &names)?;
-            // a deformable body's patch carries one contact condition: a
-            // second pair would replace the first one's (a rigid body's
-            // patch, which carries none, may be in several pairs)
-            for (key, side) in [("master", &spec.master), ("slave", &spec.slave)] {
-                let rigid = bodies.iter().any(|b| b.name == side.0 && b.rigid);
-                let earlier = contacts
-                    .iter()
-                    .position(|o| o.master == *side || o.slave == *side);
-                if let (false, Some(j)) = (rigid, earlier) {
-                    return Err(node.table()?.req(key)?.node().err(format!(
-                        "patch \"{}/{}\" of the deformable body \"{}\" is already in \
-                         contact[{j}]; a deformable body's patch can be in one contact \
-                         pair only (a rigid body's patch may be in several)",
-                        side.0, side.1, side.0
-                    )));
+            // a deformable body's patch carries one contact condition, which
+            // sums those of its pairs: their tractions with explicit coupling,
+            // and with implicit coupling their grounded springs against rigid
+            // bodies (a spring to another deformable body joins two cells,
+            // and a patch's condition is either kind, not both)
+            let is_rigid =
+                |side: &(String, String)| bodies.iter().any(|b| b.name == side.0 && b.rigid);
+            for (key, side, other) in [
+                ("master", &spec.master, &spec.slave),
+                ("slave", &spec.slave, &spec.master),
+            ] {
+                if is_rigid(side) {
+                    continue;
+                }
+                for (j, o) in contacts.iter().enumerate() {
+                    let o_other = if o.master == *side {
+                        &o.slave
+                    } else if o.slave == *side {
+                        &o.master
+                    } else {
+                        continue;
+                    };
+                    let why = if o_other == other {
+                        Some("the same two patches are already a pair")
+                    } else if o.coupling != spec.coupling {
+                        Some("the pairs of one deformable patch need the same coupling")
+                    } else if spec.coupling == Coupling::Implicit
+                        && !(is_rigid(other) && is_rigid(o_other))
+                    {
+                        Some(
+                            "with implicit coupling a deformable body's patch can be in \
+                             several pairs only against rigid bodies (use coupling = \
+                             \"explicit\", or split the patch)",
+                        )
+                    } else {
+                        None
+                    };
+                    if let Some(why) = why {
+                        return Err(node.table()?.req(key)?.node().err(format!(
+                            "patch \"{}/{}\" of the deformable body \"{}\" is already in \
+                             contact[{j}]: {why}",
+                            side.0, side.1, side.0
+                        )));
+                    }
                 }
             }
             contacts.push(spec);

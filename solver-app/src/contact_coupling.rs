@@ -34,6 +34,16 @@ const BETA_MEMORY: f64 = 0.5;
 /// GGI pair assembled for nothing).
 const BETA_FLOOR: f64 = 1e-9;
 
+/// A face whose gap is at most this fraction of its size (√area) touches
+/// and gets the spring of a face in contact (β = 1) although it carries no
+/// pressure yet. Bodies meshed touching start so: a punch held by the
+/// contact alone was otherwise free in its first outer iteration, sank
+/// 0.12 mm (470 times the converged penetration) into its foundation
+/// (NAFEMS punch), was thrown clear by the springs of that penetration,
+/// and fell back freely for 20 more; with Nagata smoothing the cycle never
+/// ended. The springs only shape the path (see [`ContactSide::beta`]).
+const TOUCHING_GAP: f64 = 1e-6;
+
 /// ε_n times the mean half-cell compliance δ_n/K of the two contact
 /// surfaces above which a pair of deformable bodies counts as stiffly
 /// coupled: then the linearisation starts from the carried traction
@@ -166,6 +176,11 @@ pub struct ContactSide {
     pub patch: usize,
     /// The surface at the current positions.
     pub surface: Surface,
+    /// The patch is a deformable body's and in several contact pairs (their
+    /// coupling is explicit, or implicit against rigid bodies only, checked
+    /// when the case is read): its contact condition is the sum of the
+    /// pairs' tractions and penalty springs.
+    shared: bool,
     /// Positions of the surface points on the body's mesh: initial, or at
     /// the start of the increment under the updated Lagrangian form.
     initial: Vec<Vector>,
@@ -597,14 +612,13 @@ impl ContactInterface {
 
     /// β of the linearisation from the last contact fractions: the larger
     /// of the fraction and `memory` times the previous β (0: the fraction).
+    /// A face without pressure whose gap is closed to within
+    /// [`TOUCHING_GAP`] of its size counts as wholly in contact.
     fn update_beta(&mut self, memory: f64) {
         for (side, fraction) in [
             (&mut self.master, &self.tractions.master),
             (&mut self.slave, &self.tractions.slave),
         ] {
-            let touch = std::env::var("FVC_TOUCH")
-                .ok()
-                .and_then(|v| v.parse::<f64>().ok());
             for (i, (b, &c)) in side
                 .beta
                 .iter_mut()
@@ -612,16 +626,10 @@ impl ContactInterface {
                 .enumerate()
             {
                 let g = fraction.gap[i];
-                let c = match touch {
-                    Some(t)
-                        if c == 0.0
-                            && g.is_finite()
-                            && g <= t * side.surface.face_mag[i].sqrt() =>
-                    {
-                        1.0
-                    }
-                    _ => c,
-                };
+                let touching = c == 0.0
+                    && g.is_finite()
+                    && g <= TOUCHING_GAP * side.surface.face_mag[i].sqrt();
+                let c = if touching { 1.0 } else { c };
                 let kept = *b * memory;
                 *b = if kept < BETA_FLOOR { c } else { kept.max(c) };
             }
@@ -717,6 +725,7 @@ impl ContactSet {
                     opposite_now: vec![Vector::zeros(); surface.n_faces()],
                     beta: vec![0.0; surface.n_faces()],
                     saved: (Vec::new(), Vec::new(), Vec::new()),
+                    shared: false,
                     surface,
                 })
             };
@@ -789,6 +798,15 @@ impl ContactSet {
                 tractions: ContactTractions::new(),
                 stats: ContactStats::default(),
             });
+        }
+        let mut uses = std::collections::HashMap::<(usize, usize), usize>::new();
+        for side in set.interfaces.iter().flat_map(|c| [&c.master, &c.slave]) {
+            *uses.entry((side.body, side.patch)).or_default() += 1;
+        }
+        for c in &mut set.interfaces {
+            for side in [&mut c.master, &mut c.slave] {
+                side.shared = !bodies[side.body].rigid && uses[&(side.body, side.patch)] > 1;
+            }
         }
         Ok(set)
     }
@@ -992,6 +1010,20 @@ impl ContactSet {
         } else {
             1.0
         };
+        // a patch in several pairs sums their tractions and springs
+        for ci in &self.interfaces {
+            for side in [&ci.master, &ci.slave].into_iter().filter(|s| s.shared) {
+                match &mut bodies[side.body].momentum.conditions[side.patch] {
+                    PatchCondition::Traction(t) => t.fill(Vector::zeros()),
+                    PatchCondition::LinearisedContact(lc) => {
+                        lc.traction.fill(Vector::zeros());
+                        lc.stiffness.fill(0.0);
+                        lc.tangential_stiffness.fill(0.0);
+                    }
+                    _ => {}
+                }
+            }
+        }
         for ci in &mut self.interfaces {
             let start = std::time::Instant::now();
             ci.coupling
@@ -1154,6 +1186,9 @@ impl ContactSet {
                 }
                 let start = b.mesh.patches[side.patch].start - b.mesh.n_internal_faces();
                 match &mut b.momentum.conditions[side.patch] {
+                    PatchCondition::Traction(t) if side.shared => {
+                        t.iter_mut().zip(&side.applied).for_each(|(t, a)| *t += a)
+                    }
                     PatchCondition::Traction(t) => t.copy_from_slice(&side.applied),
                     PatchCondition::LinearisedContact(lc) => {
                         // eq. 4.52 about the current state, with the penalty
@@ -1166,6 +1201,15 @@ impl ContactSet {
                             side.beta.iter().zip(&side.opposite_compliance).enumerate()
                         {
                             let normal = side.surface.face_normals[i];
+                            let series = |c: f64| if c > 0.0 { c / (1.0 + c * ch) } else { 0.0 };
+                            if side.shared {
+                                // against rigid bodies only: grounded springs add
+                                lc.traction[i] += side.applied[i];
+                                lc.normal[i] = normal;
+                                lc.stiffness[i] += series(eps * beta);
+                                lc.tangential_stiffness[i] += series(eps_t * beta);
+                                continue;
+                            }
                             lc.traction[i] = if carried_base && ch > 0.0 {
                                 carried_traction_base(
                                     lc.traction_at(i, &u_b[i]),
@@ -1178,7 +1222,6 @@ impl ContactSet {
                                 side.applied[i]
                             };
                             lc.normal[i] = normal;
-                            let series = |c: f64| if c > 0.0 { c / (1.0 + c * ch) } else { 0.0 };
                             lc.stiffness[i] = series(eps * beta);
                             lc.tangential_stiffness[i] = series(eps_t * beta);
                         }

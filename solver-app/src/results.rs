@@ -158,7 +158,7 @@ pub fn history_row(
 ) -> Vec<f64> {
     let mut row = vec![time, outer as f64, residual];
     for (bi, p, _) in reported_patches(bodies) {
-        let f = patch_reaction(&bodies[bi], p);
+        let f = patch_reaction(bodies, bi, p, contacts);
         row.extend([f.x, f.y, f.z]);
     }
     for c in &contacts.interfaces {
@@ -198,13 +198,40 @@ impl History {
     }
 }
 
-/// Reaction force of patch `p`: ∫ σ·n dA, the force exerted on the body
-/// through the patch (zero for a rigid body, which carries no stress).
-pub fn patch_reaction(body: &Body, p: usize) -> Vector {
-    if body.rigid {
-        Vector::zeros()
+/// Reaction force of patch `p` of body `bi`: ∫ σ·n dA, the force exerted
+/// on the body through the patch. A rigid body carries no stress; it is
+/// held in equilibrium by its prescribed patches, so they take minus the
+/// contact forces on it (the forces its contact pairs exert on the bodies
+/// opposite, reversed), shared in proportion to their areas: the force on
+/// a rigid punch's driven patch is the punch force.
+pub fn patch_reaction(bodies: &[Body], bi: usize, p: usize, contacts: &ContactSet) -> Vector {
+    let body = &bodies[bi];
+    if !body.rigid {
+        return body.momentum.patch_force(&body.mesh, p);
+    }
+    let mut on_body = Vector::zeros();
+    for c in &contacts.interfaces {
+        // the force on the deformable side, reversed (a rigid–rigid pair
+        // carries none)
+        if c.master.body == bi && !bodies[c.slave.body].rigid {
+            on_body -= c.stats.slave_force;
+        }
+        if c.slave.body == bi && !bodies[c.master.body].rigid {
+            on_body -= c.stats.master_force;
+        }
+    }
+    let area = |q: usize| -> f64 {
+        body.mesh.patches[q]
+            .faces()
+            .map(|f| body.geom.face_mag[f])
+            .sum()
+    };
+    let total: f64 = body.reported_patches().map(area).sum();
+    if total > 0.0 {
+        // + 0: no −0 in the tables
+        (-on_body * (area(p) / total)).map(|v| v + 0.0)
     } else {
-        body.momentum.patch_force(&body.mesh, p)
+        Vector::zeros()
     }
 }
 
@@ -243,7 +270,7 @@ pub fn full_revolution_lines(bodies: &[Body], contacts: &ContactSet) -> Vec<Stri
     let factor = std::f64::consts::TAU / angle;
     let mut parts = Vec::new();
     for (bi, p, name) in reported_patches(bodies) {
-        let f = patch_reaction(&bodies[bi], p);
+        let f = patch_reaction(bodies, bi, p, contacts);
         parts.push(format!("{name} axial {:.6e}", factor * f.dot(&axis)));
     }
     for c in &contacts.interfaces {
@@ -297,7 +324,7 @@ pub fn write_summary(
     let mut patches = serde_json::Map::new();
     for (bi, p, name) in reported_patches(bodies) {
         let b = &bodies[bi];
-        let f = patch_reaction(b, p);
+        let f = patch_reaction(bodies, bi, p, contacts);
         let area: f64 = b.mesh.patches[p].faces().map(|f| b.geom.face_mag[f]).sum();
         patches.insert(
             name,

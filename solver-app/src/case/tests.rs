@@ -898,22 +898,44 @@ algorithm = "pointwise"
     );
     let e = fail(&format!("{two}[contact]\nmaster = \"plane/x\"\n"));
     assert!(e.message.contains("[[contact]]"), "{e}");
-    // a deformable body's patch in two pairs is refused (the second pair's
-    // condition would replace the first's); a rigid body's patch is not
+    // a deformable body's patch in several pairs: explicit coupling, or
+    // implicit against rigid bodies only; one coupling; no pair twice
     let pair = |m: &str, s: &str| format!("[[contact]]\nmaster = \"{m}\"\nslave = \"{s}\"\n");
-    let e = fail(&format!(
+    let implicit = |m: &str, s: &str| pair(m, s) + "coupling = \"implicit\"\n";
+    let c = parse(&format!(
         "{two}{}{}",
         pair("plane/ymax", "cyl/a"),
         pair("cyl/a", "cyl/b")
     ));
+    assert_eq!(c.contacts.len(), 2);
+    let c = parse(&format!(
+        "{two}{}{}",
+        implicit("plane/ymax", "cyl/a"),
+        implicit("plane/ymin", "cyl/a")
+    ));
+    assert_eq!(c.contacts.len(), 2);
+    let e = fail(&format!(
+        "{two}{}{}",
+        implicit("plane/ymax", "cyl/a"),
+        implicit("cyl/a", "cyl/b")
+    ));
     assert_eq!(e.key.as_deref(), Some("contact[1].master"));
     assert!(e.message.contains("already in contact[0]"), "{e}");
+    assert!(e.message.contains("only against rigid bodies"), "{e}");
     let e = fail(&format!(
         "{two}{}{}",
         pair("plane/ymax", "cyl/a"),
-        pair("plane/ymin", "cyl/a")
+        implicit("plane/ymin", "cyl/a")
     ));
     assert_eq!(e.key.as_deref(), Some("contact[1].slave"));
+    assert!(e.message.contains("same coupling"), "{e}");
+    let e = fail(&format!(
+        "{two}{}{}",
+        pair("plane/ymax", "cyl/a"),
+        pair("cyl/a", "plane/ymax")
+    ));
+    assert_eq!(e.key.as_deref(), Some("contact[1].master"));
+    assert!(e.message.contains("already a pair"), "{e}");
     let c = parse(&format!(
         "{two}{}{}",
         pair("plane/ymax", "cyl/a"),

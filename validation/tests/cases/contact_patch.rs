@@ -209,3 +209,100 @@ value = [0, 0, 0]
     // linear: the forces scale with the imposed compression
     assert!((fa / fb - 2.5).abs() < 1e-6, "{}", fa / fb);
 }
+
+/// Two rigid half-width punches pressed together on one deformable patch
+/// (the block's top in two contact pairs): each carries half of what one
+/// full-width punch carries, with either coupling, and the summed
+/// condition leaves the pressure uniform (uniaxial strain, symmetry sides).
+#[test]
+fn two_rigid_punches_on_one_deformable_patch_carry_what_one_carries() {
+    let punch = |name: &str, x0: f64, x1: f64, coupling: &str| {
+        format!(
+            r#"
+[[body]]
+name = "{name}"
+rigid = true
+mesh = {{ generator = "box", min = [{x0}, 1, 0], max = [{x1}, 1.2, 0.1], cells = [1, 1, 1] }}
+material = {{ model = "linear-elastic", E = 1000.0, nu = 0.3 }}
+[body.boundary.ymax]
+type = "displacement"
+value = [0, -0.01, 0]
+[[contact]]
+master = "{name}/ymin"
+slave = "block/ymax"
+coupling = "{coupling}"
+"#
+        )
+    };
+    let block = r#"
+title = "two-punches"
+[time]
+end = 1.0
+steps = 1
+[solver]
+tolerance = 1e-10
+max_outer = 20000
+[[body]]
+name = "block"
+mesh = { generator = "box", min = [0, 0, 0], max = [1, 1, 0.1], cells = [6, 5, 1] }
+material = { model = "linear-elastic", E = 1000.0, nu = 0.3 }
+[body.boundary.ymin]
+type = "displacement"
+value = [0, 0, 0]
+[body.boundary.zmin]
+type = "empty"
+[body.boundary.zmax]
+type = "empty"
+[body.boundary.xmin]
+type = "symmetry"
+[body.boundary.xmax]
+type = "symmetry"
+"#;
+    for coupling in ["explicit", "implicit"] {
+        let run = |text: String| {
+            let out = run_toml(&text, std::path::Path::new("."));
+            assert!(out.converged, "{coupling}: {:?}", out.failure);
+            out
+        };
+        let one = run(format!("{block}{}", punch("whole", 0.0, 1.0, coupling)));
+        let full = one.contacts.interfaces[0].stats.normal_force;
+        let two = run(format!(
+            "{block}{}{}",
+            punch("left", 0.0, 0.5, coupling),
+            punch("right", 0.5, 1.0, coupling)
+        ));
+        let (fl, fr) = (
+            two.contacts.interfaces[0].stats.normal_force,
+            two.contacts.interfaces[1].stats.normal_force,
+        );
+        eprintln!(
+            "{coupling}: one punch {full:.10e} N; two half punches {fl:.10e} + {fr:.10e} N ({} and {} outer iterations)",
+            one.summary.outer_iterations, two.summary.outer_iterations
+        );
+        assert!(full > 0.0);
+        assert!(
+            (fl - 0.5 * full).abs() <= 1e-6 * full,
+            "{fl} against {full}"
+        );
+        assert!(
+            (fr - 0.5 * full).abs() <= 1e-6 * full,
+            "{fr} against {full}"
+        );
+        // the block's top carries the sum: its base reaction equals it
+        let b = &two.bodies[0];
+        let base = b
+            .momentum
+            .patch_force(&b.mesh, b.mesh.patch_index("ymin").unwrap());
+        assert!((base.y - full).abs() <= 1e-6 * full, "{base:?}");
+        // each rigid punch is held by its driven patch: the reaction there
+        // is its contact force, pushing down (the block's base pushes up)
+        for (bi, f) in [(1, fl), (2, fr)] {
+            let p = two.bodies[bi].mesh.patch_index("ymax").unwrap();
+            let r = solver_app::results::patch_reaction(&two.bodies, bi, p, &two.contacts);
+            assert!(
+                (r.y + f).abs() <= 1e-9 * f && r.x == 0.0 && r.z == 0.0,
+                "{r:?}"
+            );
+        }
+    }
+}

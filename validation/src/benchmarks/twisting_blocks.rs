@@ -26,7 +26,18 @@ pub struct TwistingBlocks {
 
 /// Runs the shipped case, with the lower block's top as master unless `swapped`.
 pub fn run(swapped: bool) -> TwistingBlocks {
+    run_algorithm(swapped, None)
+}
+
+/// [`run`] with another contact algorithm (`algorithm = "..."` of the pair).
+pub fn run_algorithm(swapped: bool, algorithm: Option<&str>) -> TwistingBlocks {
     let (_, mut text) = read_case("twisting-blocks", "case.toml");
+    if let Some(a) = algorithm {
+        text = text.replace(
+            "coupling = \"implicit\"",
+            &format!("coupling = \"implicit\"\nalgorithm = \"{a}\""),
+        );
+    }
     if swapped {
         text = swap_master_slave(&text, "lower/zmax", "upper/zmin");
     }

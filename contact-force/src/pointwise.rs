@@ -40,8 +40,9 @@ use fv_mesh::{Real, Surface, Vector};
 /// `"pointwise-nagata"`, thesis §4.6.1) step 1 projects each slave point
 /// orthogonally onto the smoothed master (Newton–Raphson, eqs. 4.81–4.84,
 /// at most 10 updates) among the patches around the closest flat face,
-/// keeping the foot with the smallest gap; the gap is the signed distance
-/// along the smoothed normal. In step 2 the normal traction of a slave
+/// keeping the foot with the smallest gap among those inside their patch;
+/// the gap is the signed distance along the smoothed normal. A point with
+/// no such foot (beyond the master's border) keeps its flat gap. In step 2 the normal traction of a slave
 /// point acts along the smoothed master normal at its foot, so eq. 4.11
 /// reads `t_s = (1/n_p) Σ_p ε_n ⟨−g_p⟩ ν_p` (ν_p = n_bs for flat faces in
 /// contact); the face pressure stays `(1/n_p) Σ_p ε_n ⟨−g_p⟩`. Points
@@ -222,8 +223,8 @@ impl Pointwise {
                 } else {
                     1.0
                 };
-                let g = if g < 0.0 { g * weight } else { g };
-                self.point_gap[p] = g;
+                let faded = |g: Real| if g < 0.0 { g * weight } else { g };
+                self.point_gap[p] = faded(g);
                 self.point_normal[p] = master.face_normals[m];
                 self.point_master[p] = m as u32;
                 let Some(sm) = self.smoothing.as_ref().filter(|_| smooth) else {
@@ -232,8 +233,8 @@ impl Pointwise {
                 if sm.clear_of(m, g) || sm.flat_around(m) {
                     continue;
                 }
-                if let Some(sg) = sm.gap_near(&x, m) {
-                    self.point_gap[p] = sg.gap;
+                if let Some(sg) = sm.gap_inside(&x, m) {
+                    self.point_gap[p] = faded(sg.gap);
                     self.point_normal[p] = sg.normal;
                 }
             }

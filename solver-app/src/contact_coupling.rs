@@ -764,7 +764,12 @@ impl ContactSet {
                 }
             }
             let mut algorithm = kind.build();
-            algorithm.set_symmetry_planes(&symmetry_planes(&bodies[mb]));
+            // the model's symmetry planes: a rigid master has no conditions
+            // of its own, but a plane of the slave's cuts it alike (the
+            // die of an axisymmetric die drawing)
+            let mut planes = symmetry_planes(&bodies[mb]);
+            planes.extend(symmetry_planes(&bodies[sb]));
+            algorithm.set_symmetry_planes(&planes);
             set.interfaces.push(ContactInterface {
                 slave_name: format!("{}/{}", c.slave.0, c.slave.1),
                 master_name: format!("{}/{}", c.master.0, c.master.1),

@@ -207,14 +207,12 @@ impl Pointwise {
                     best = Some((d2, (x - q).dot(&nm), border, mu));
                 }
             }
-            if let Some((_, g, border, m)) = best {
+            if let Some((d2, g, border, m)) = best {
                 // beyond the master surface's border: no gap, but over a
                 // ramp of BORDER_RAMP face sizes the penetration fades
                 let weight = if border && !self.on_symmetry_plane(master, m, &x) {
-                    let (q, _) = closest_point_on_face(master, m, &x);
-                    let nm = master.face_normals[m];
-                    let d = x - q;
-                    let outside = (d - nm * nm.dot(&d)).norm();
+                    // the foot's distance across the face plane
+                    let outside = (d2 - g * g).max(0.0).sqrt();
                     let weight = 1.0 - outside / (BORDER_RAMP * master.face_mag[m].sqrt());
                     if !(weight > 0.0) {
                         continue;

@@ -204,6 +204,12 @@ impl SmoothedMaster {
         }
     }
 
+    /// The faces whose patches are searched around face `f`.
+    fn ring_of(&self, f: usize) -> Option<&[usize]> {
+        self.ring
+            .get(*self.ring_offsets.get(f)?..*self.ring_offsets.get(f + 1)?)
+    }
+
     /// Gap of `x` (current coordinates) by the closest projection onto the
     /// patches of the faces around face `near` (thesis §4.6.1: the
     /// neighbouring patches of the face found by detection, the foot with
@@ -211,9 +217,7 @@ impl SmoothedMaster {
     /// is degenerate.
     pub(crate) fn gap_near(&self, x: &Vector, near: usize) -> Option<SmoothedGap> {
         let s = self.surface.as_ref().filter(|_| self.active)?;
-        let ring = self
-            .ring
-            .get(*self.ring_offsets.get(near)?..*self.ring_offsets.get(near + 1)?)?;
+        let ring = self.ring_of(near)?;
         let p = s.closest_projection(&(x - self.shift), ring).ok()??;
         Some(SmoothedGap {
             gap: p.signed_distance,
@@ -229,9 +233,7 @@ impl SmoothedMaster {
     pub(crate) fn gap_inside(&self, x: &Vector, f: usize) -> Option<SmoothedGap> {
         let s = self.surface.as_ref().filter(|_| self.active)?;
         let xr = x - self.shift;
-        let ring = self
-            .ring
-            .get(*self.ring_offsets.get(f)?..*self.ring_offsets.get(f + 1)?)?;
+        let ring = self.ring_of(f)?;
         let mut best: Option<SmoothedGap> = None;
         for c in ring {
             if let Ok(Some(p)) = s.closest_projection(&xr, std::slice::from_ref(c)) {

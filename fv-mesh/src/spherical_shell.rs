@@ -25,7 +25,16 @@ pub enum ShellPart {
     /// `x ≥ 0, y ≥ 0, z ≤ 0`; patches `inner outer xmin ymin zmax`, the
     /// planes x = 0, y = 0 and z = 0.
     Octant,
+    /// The axisymmetric section of the hemisphere: a one-cell wedge of
+    /// ±[`WEDGE_HALF_ANGLE`] about the z axis, centred on the x axis, with
+    /// `quarter` cells from the pole to the rim (prisms at the pole);
+    /// patches `inner outer zmax front back` (front at +angle).
+    Wedge,
 }
+
+/// Half opening angle of the [`ShellPart::Wedge`] section, radians (2.5°,
+/// as the thesis's axisymmetric cases).
+pub const WEDGE_HALF_ANGLE: f64 = 2.5 * std::f64::consts::PI / 180.0;
 
 impl ShellPart {
     /// Whether a cube-surface quadrilateral with lattice centre `c`
@@ -35,6 +44,7 @@ impl ShellPart {
             ShellPart::Sphere => true,
             ShellPart::Hemisphere => c[2] < 0,
             ShellPart::Octant => c[0] > 0 && c[1] > 0 && c[2] < 0,
+            ShellPart::Wedge => false,
         }
     }
 }
@@ -42,8 +52,9 @@ impl ShellPart {
 /// Spherical shell `r_inner ≤ |x| ≤ r_outer` about the origin, or its
 /// [`ShellPart`]. `cells = [radial, quarter]`: `radial` layers (graded by
 /// `radial_grading`, last/first size) and `quarter` cells along a quarter
-/// great circle (even, ≥ 2). The octant has `3·(quarter/2)²` cells per
-/// layer, the hemisphere four times and the sphere eight times as many.
+/// great circle (even, ≥ 2; any ≥ 2 for the wedge). The octant has
+/// `3·(quarter/2)²` cells per layer, the hemisphere four times and the
+/// sphere eight times as many, the wedge `quarter`.
 pub fn spherical_shell_mesh(
     r_inner: f64,
     r_outer: f64,
@@ -62,6 +73,12 @@ pub fn spherical_shell_mesh(
         )));
     }
     let [radial, quarter] = cells;
+    if part == ShellPart::Wedge && radial >= 1 && (2..=10_000_000).contains(&quarter) {
+        return axisymmetric_wedge(
+            &graded_coordinates(r_inner, r_outer, radial, radial_grading),
+            quarter,
+        );
+    }
     if radial == 0 || quarter < 2 || quarter % 2 != 0 {
         return Err(MeshError::invalid(format!(
             "spherical-shell: need cells = [radial >= 1, quarter even >= 2], got {cells:?}"
@@ -186,6 +203,99 @@ pub fn spherical_shell_mesh(
     PolyMesh::from_cells(points, shapes, &groups)
 }
 
+/// [`ShellPart::Wedge`]: the meridian section `z = -r cos φ`, `ρ = r sin φ`
+/// (φ from the pole, 0 … 90°, `quarter` equal steps; `radii` the layer
+/// radii) revolved by ±[`WEDGE_HALF_ANGLE`] about z. The cells touching
+/// the axis are prisms whose axis edge is shared by both wedge planes, as
+/// a revolved section meshed by Gmsh (`Extrude{Rotate..}{Layers{1};
+/// Recombine;}`); no patch lies on the axis.
+fn axisymmetric_wedge(radii: &[f64], quarter: usize) -> Result<PolyMesh, MeshError> {
+    let (radial, q) = (radii.len() - 1, quarter);
+    let (s, c) = WEDGE_HALF_ANGLE.sin_cos();
+    // Per layer: the pole point, then (−, +) pairs for φ index 1..=q.
+    let per_layer = 1 + 2 * q;
+    let mut points = Vec::with_capacity(per_layer * (radial + 1));
+    for &r in radii {
+        points.push(Vector::new(0.0, 0.0, -r));
+        for j in 1..=q {
+            let phi = std::f64::consts::FRAC_PI_2 * j as f64 / q as f64;
+            let (rho, z) = (r * phi.sin(), -r * phi.cos());
+            points.push(Vector::new(rho * c, -rho * s, z));
+            points.push(Vector::new(rho * c, rho * s, z));
+        }
+    }
+    // Point of layer k, φ index j, side −1 (back) or +1 (front).
+    let at = |k: usize, j: usize, side: i32| -> u32 {
+        let local = if j == 0 {
+            0
+        } else {
+            2 * j - 1 + usize::from(side > 0)
+        };
+        (k * per_layer + local) as u32
+    };
+    let mut shapes = Vec::with_capacity(radial * q);
+    for k in 0..radial {
+        shapes.push(CellShape {
+            kind: CellType::Wedge,
+            nodes: vec![
+                at(k, 0, 0),
+                at(k, 1, -1),
+                at(k, 1, 1),
+                at(k + 1, 0, 0),
+                at(k + 1, 1, -1),
+                at(k + 1, 1, 1),
+            ],
+        });
+        for j in 1..q {
+            let mut nodes = Vec::with_capacity(8);
+            for kk in [k, k + 1] {
+                nodes.extend([
+                    at(kk, j, -1),
+                    at(kk, j + 1, -1),
+                    at(kk, j + 1, 1),
+                    at(kk, j, 1),
+                ]);
+            }
+            shapes.push(CellShape {
+                kind: CellType::Hexa,
+                nodes,
+            });
+        }
+    }
+    let surface = |k: usize| -> Vec<Vec<u32>> {
+        let mut faces = vec![vec![at(k, 0, 0), at(k, 1, -1), at(k, 1, 1)]];
+        faces.extend(
+            (1..q).map(|j| vec![at(k, j, -1), at(k, j + 1, -1), at(k, j + 1, 1), at(k, j, 1)]),
+        );
+        faces
+    };
+    let side = |sd: i32| -> Vec<Vec<u32>> {
+        (0..radial)
+            .flat_map(|k| {
+                (0..q).map(move |j| {
+                    vec![
+                        at(k, j, sd),
+                        at(k, j + 1, sd),
+                        at(k + 1, j + 1, sd),
+                        at(k + 1, j, sd),
+                    ]
+                })
+            })
+            .collect()
+    };
+    let rim = (0..radial)
+        .map(|k| vec![at(k, q, -1), at(k, q, 1), at(k + 1, q, 1), at(k + 1, q, -1)])
+        .collect();
+    let groups = vec![
+        ("inner".to_string(), surface(0)),
+        ("outer".to_string(), surface(radial)),
+        ("zmax".to_string(), rim),
+        ("front".to_string(), side(1)),
+        ("back".to_string(), side(-1)),
+    ];
+    PolyMesh::from_cells(points, shapes, &groups)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -274,6 +384,49 @@ mod tests {
         assert!((v / exact - 1.0).abs() < 0.1, "{v}");
     }
 
+    /// The axisymmetric wedge: its volume converges at second order to
+    /// the revolved section's, `sin α cos α / π` of the hemispherical shell
+    /// (the wedge's chords span `2ρ sin α` at depth `ρ cos α`); one prism
+    /// per layer at the pole; the wedge planes pass through the z axis at
+    /// ±α, the rim lies in z = 0.
+    #[test]
+    fn wedge_section_volume_converges_and_planes_are_wedge_planes() {
+        let (ri, ro) = (10.0, 12.0);
+        let a = WEDGE_HALF_ANGLE;
+        let hemi = 2.0 / 3.0 * std::f64::consts::PI * (ro * ro * ro - ri * ri * ri);
+        let exact = a.sin() * a.cos() / std::f64::consts::PI * hemi;
+        let mut errors = Vec::new();
+        for quarter in [15, 30] {
+            let m = spherical_shell_mesh(ri, ro, ShellPart::Wedge, [3, quarter], 1.0).unwrap();
+            assert_eq!(m.n_cells, 3 * quarter);
+            let g = MeshGeometry::new(&m).unwrap();
+            assert!(g.cell_volumes.iter().all(|&v| v > 0.0));
+            let volume: f64 = g.cell_volumes.iter().sum();
+            errors.push((volume / exact - 1.0).abs());
+            let names: Vec<_> = m.patches.iter().map(|p| p.name.as_str()).collect();
+            assert_eq!(names, ["inner", "outer", "zmax", "front", "back"]);
+            for (name, sign) in [("front", 1.0), ("back", -1.0)] {
+                let p = patch(&m, name);
+                assert_eq!(p.faces().count(), 3 * quarter);
+                let plane = Vector::new(-a.sin() * sign, a.cos(), 0.0);
+                for f in p.faces() {
+                    assert!(
+                        g.face_centres[f].dot(&plane).abs() < 1e-9,
+                        "{name} face {f}"
+                    );
+                    assert!((g.face_normals[f].dot(&plane).abs() - 1.0).abs() < 1e-9);
+                }
+            }
+            for f in patch(&m, "zmax").faces() {
+                assert!(g.face_centres[f].z.abs() < 1e-9);
+            }
+        }
+        assert!(
+            errors[0] < 5e-3 && errors[1] < errors[0] / 3.0,
+            "{errors:?}"
+        );
+    }
+
     #[test]
     fn bad_arguments_are_errors() {
         let bad = |ri, ro, c: [usize; 2], g| spherical_shell_mesh(ri, ro, ShellPart::Octant, c, g);
@@ -282,5 +435,9 @@ mod tests {
         assert!(bad(1.0, 2.0, [0, 4], 1.0).is_err());
         assert!(bad(1.0, 2.0, [2, 3], 1.0).is_err());
         assert!(bad(1.0, 2.0, [2, 4], 0.0).is_err());
+        let wedge = |c: [usize; 2]| spherical_shell_mesh(1.0, 2.0, ShellPart::Wedge, c, 1.0);
+        assert!(wedge([0, 4]).is_err());
+        assert!(wedge([2, 1]).is_err());
+        assert!(wedge([2, 3]).is_ok());
     }
 }

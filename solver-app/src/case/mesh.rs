@@ -68,7 +68,10 @@ pub enum MeshSpec {
     /// a thick spherical shell about the origin (cubed-sphere hexahedra),
     /// then moved by `translate` (its centre). `part`: `"sphere"` (patches
     /// `inner outer`), `"hemisphere"` (z ≤ 0; `inner outer zmax`) or
-    /// `"octant"` (x, y ≥ 0, z ≤ 0; `inner outer xmin ymin zmax`).
+    /// `"octant"` (x, y ≥ 0, z ≤ 0; `inner outer xmin ymin zmax`) or
+    /// `"wedge"` (the axisymmetric section of the hemisphere, a one-cell
+    /// wedge of ±2.5° about z around the x axis; `inner outer zmax front
+    /// back`, front at +2.5°; `quarter` any ≥ 2, from the pole to the rim).
     /// `quarter` (even) cells along a quarter great circle.
     SphericalShell {
         /// Inner radius (> 0).
@@ -268,6 +271,7 @@ fn generate_spherical_shell(t: &Table<'_>) -> Res<MeshSpec> {
                 ("sphere", ShellPart::Sphere),
                 ("hemisphere", ShellPart::Hemisphere),
                 ("octant", ShellPart::Octant),
+                ("wedge", ShellPart::Wedge),
             ],
         )
     })?;
@@ -282,7 +286,7 @@ fn generate_spherical_shell(t: &Table<'_>) -> Res<MeshSpec> {
     }
     let radial = items[0].node().usize_min(1)?;
     let quarter = items[1].node().usize_min(2)?;
-    if quarter % 2 != 0 {
+    if quarter % 2 != 0 && part != ShellPart::Wedge {
         return Err(n.err(format!(
             "the cells along a quarter circle must be even, got {quarter}"
         )));
@@ -291,7 +295,9 @@ fn generate_spherical_shell(t: &Table<'_>) -> Res<MeshSpec> {
         ShellPart::Octant => 3,
         ShellPart::Hemisphere => 12,
         ShellPart::Sphere => 24,
-    } * (quarter as u128 / 2).pow(2);
+        ShellPart::Wedge => 0,
+    } * (quarter as u128 / 2).pow(2)
+        + u128::from(part == ShellPart::Wedge) * quarter as u128;
     if per_layer * radial as u128 > MAX_GENERATED_CELLS {
         return Err(n.err(format!(
             "[{radial}, {quarter}] makes {} cells, more than the generator limit of {MAX_GENERATED_CELLS}",

@@ -424,6 +424,20 @@ fn spherical_shell_form() {
             translate: [0.0, 0.0, 5.0],
         }
     );
+    // the axisymmetric wedge takes any number of cells from pole to rim
+    let wedge = MIN.replace(
+        r#"mesh = { generator = "box", min = [0, 0, 0], max = [1, 1, 0.1], cells = [10, 10, 1] }"#,
+        r#"mesh = { generator = "spherical-shell", r_inner = 10, r_outer = 12, part = "wedge", cells = [4, 45] }"#,
+    );
+    let case = parse_case(&wedge, Path::new("c.toml")).expect("parses");
+    assert!(matches!(
+        case.bodies[0].mesh,
+        MeshSpec::SphericalShell {
+            part: fv_mesh::spherical_shell::ShellPart::Wedge,
+            cells: [4, 45],
+            ..
+        }
+    ));
 }
 
 #[test]

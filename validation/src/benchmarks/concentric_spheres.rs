@@ -27,6 +27,11 @@ pub enum Mesh {
     /// `polymesh.toml`: the benchmark's polyMesh from `../shared` (inner
     /// 500, outer 180 cells).
     Benchmark,
+    /// `axisymmetric.toml`: the axisymmetric section (one-cell wedge),
+    /// 10 × 60 cells per shell.
+    Axisymmetric,
+    /// `axisymmetric.toml` refined to 16 × 120 cells per shell.
+    AxisymmetricFine,
 }
 
 impl Mesh {
@@ -53,6 +58,23 @@ impl Mesh {
                 "inner/r_top",
                 "outer/R_top:normal_force",
             ),
+            Mesh::Axisymmetric | Mesh::AxisymmetricFine => (
+                "axisymmetric.toml",
+                "outer/inner",
+                "inner/outer",
+                "outer/outer:normal_force",
+            ),
+        }
+    }
+
+    /// Force on the quarter model per force of the mesh: 90°/5° for the
+    /// ±2.5° wedge, 1 for the quarter models.
+    pub fn quarter_model_factor(self) -> f64 {
+        match self {
+            Mesh::Axisymmetric | Mesh::AxisymmetricFine => {
+                std::f64::consts::FRAC_PI_4 / fv_mesh::spherical_shell::WEDGE_HALF_ANGLE
+            }
+            _ => 1.0,
         }
     }
 }
@@ -174,6 +196,9 @@ pub fn case_text(opts: &Options) -> (PathBuf, String) {
     if opts.swapped {
         text = swap_master_slave(&text, master, slave);
     }
+    if opts.mesh == Mesh::AxisymmetricFine {
+        text = text.replace("cells = [10, 60]", "cells = [16, 120]");
+    }
     (dir, text)
 }
 
@@ -203,9 +228,14 @@ pub fn run(opts: &Options, shared: Option<&Path>) -> Result<Spheres, String> {
         // the extracted mesh is only needed while the run reads it
         let _ = std::fs::remove_dir_all(dir);
     }
+    let factor = opts.mesh.quarter_model_factor();
     Ok(Spheres {
         displacement: history.column("time"),
-        force: history.column(opts.mesh.names().3),
+        force: history
+            .column(opts.mesh.names().3)
+            .into_iter()
+            .map(|f| f * factor)
+            .collect(),
         outer_iterations: history.outer_iterations(),
         converged: out.converged,
         failure: out.failure.clone(),
@@ -294,4 +324,43 @@ pub fn abaqus_febio_mean(curves: &[ReferenceCurve], u: f64) -> f64 {
         .map(|c| c.force_at(u))
         .collect();
     f.iter().sum::<f64>() / f.len().max(1) as f64
+}
+
+/// `cases/concentric-spheres/pole-load.toml` (the outer shell alone,
+/// axisymmetric, small strain, a pressure cap at the pole): the
+/// axisymmetric Q8 finite-element solution of `fe_reference.py`,
+/// converged to 1e-5: u_z at the outer and the inner pole and u_r at the
+/// outer rim, mm.
+pub const POLE_LOAD_FE: [f64; 3] = [4.73676e-2, 4.85189e-2, 4.63009e-3];
+
+/// Runs `pole-load.toml`: u_z of the outer ("cap") and inner boundary
+/// faces nearest the axis, u_r of the rim face farthest from it, and
+/// whether the run converged.
+pub fn run_pole_load() -> ([f64; 3], bool) {
+    let (dir, text) = read_case("concentric-spheres", "pole-load.toml");
+    let out = crate::run_toml(&text, &dir);
+    let body = &out.bodies[0];
+    let ni = body.mesh.n_internal_faces();
+    let radius = |f: usize| body.geom.face_centres[f].xy().norm();
+    // u_b of the face of `patch` with the least (or, `far`, the largest) radius
+    let pick = |patch: &str, far: bool| {
+        let p = body.mesh.patch_index(patch)?;
+        let f = body.mesh.patches[p].faces().min_by(|&a, &b| {
+            let o = radius(a).total_cmp(&radius(b));
+            if far {
+                o.reverse()
+            } else {
+                o
+            }
+        })?;
+        Some((f, body.momentum.u_b[f - ni]))
+    };
+    let value = || -> Option<[f64; 3]> {
+        let (_, outer) = pick("cap", false)?;
+        let (_, inner) = pick("inner", false)?;
+        let (f, rim) = pick("rim", true)?;
+        let x = body.geom.face_centres[f];
+        Some([outer.z, inner.z, (rim.x * x.x + rim.y * x.y) / radius(f)])
+    };
+    (value().unwrap_or([f64::NAN; 3]), out.converged)
 }

@@ -12,7 +12,10 @@
 //! and with master and slave swapped. With the case's Rhie–Chow 1 the
 //! coarse frictionless runs (either master) meet the 5 % before buckling;
 //! the coarse frictional run misses it by 0.2 %, the fine runs by 4–5 %
-//! (under), the benchmark polyMesh stops at 7.7 mm.
+//! (under), the benchmark polyMesh stops at 7.7 mm. The fine mesh's
+//! shortfall is the converged answer's: the axisymmetric section
+//! ([`fine_mesh_follows_the_converged_axisymmetric_section`]) converges
+//! 7–9 % under Abaqus/FEBio.
 //! Outer-iteration counts below were measured without the linear
 //! predictor (`[solver] predictor`), except where said; it leaves the
 //! forces unchanged and cuts them by ~20 % (first 3 mm: 195 against 242).
@@ -337,5 +340,91 @@ fn reference_curves_mapping() {
                 assert!((m / f - 1.0).abs() < 2e-3, "mean at {u}: {m} against {f}");
             }
         }
+    }
+}
+
+/// The solver on the shells' bending, against an independent solution:
+/// the outer shell alone (axisymmetric wedge, 8 × 90 cells, small strain)
+/// under a pressure cap at its pole, against the axisymmetric Q8
+/// finite-element solution of `fe_reference.py`. Measured (boundary
+/// faces nearest the poles, farthest on the rim): u_z +0.43 % (outer
+/// pole) and +0.39 % (inner pole), u_r −0.17 % (rim).
+#[test]
+fn shell_under_a_pole_load_matches_finite_elements() {
+    let (u, converged) = validation::benchmarks::concentric_spheres::run_pole_load();
+    assert!(converged);
+    let fe = validation::benchmarks::concentric_spheres::POLE_LOAD_FE;
+    let errors: Vec<f64> = u.iter().zip(fe).map(|(a, b)| a / b - 1.0).collect();
+    eprintln!(
+        "hemisphere, pole load: outer pole u_z {:.5e} ({:+.2} %), inner pole {:.5e} ({:+.2} %), rim u_r {:.5e} ({:+.2} %)",
+        u[0],
+        100.0 * errors[0],
+        u[1],
+        100.0 * errors[1],
+        u[2],
+        100.0 * errors[2]
+    );
+    assert!(errors.iter().all(|e| e.abs() < 0.01), "{errors:?}");
+}
+
+/// Why the fine mesh misses the 5 % (issue 7): the problem is
+/// axisymmetric before buckling, and its axisymmetric section converges
+/// in the mesh at little cost. First 3 mm, frictionless. Measured (N at
+/// 1.5 / 2 / 3 mm, deviation from the Abaqus/FEBio mean):
+///
+/// | mesh | F | deviation |
+/// |---|---|---|
+/// | section 10 × 60 per shell | 0.515 / 0.725 / 1.205 | −9.4 / −7.8 / −5.0 % |
+/// | section 16 × 120 per shell | 0.516 / 0.727 / 1.208 | −9.1 / −7.6 / −4.7 % |
+/// | 3-D fine (fine.toml) | 0.519 / 0.732 / 1.213 | −8.6 / −7.0 / −4.3 % |
+///
+/// The converged force lies 7–9 % under Abaqus and FEBio at 1.5–2 mm
+/// (6–11 % under each) and 7–10 % over Areias and Puso–Laursen: within
+/// the published spread, but outside the benchmark's 5 % of the stiffer
+/// pair. The fine 3-D mesh follows it within 0.7 %. The same solver and
+/// wedge match an independent finite-element solution of one shell under
+/// a pole load within 0.5 % ([`shell_under_a_pole_load_matches_finite_elements`]);
+/// Abaqus and FEBio ran meshes as coarse as case.toml (thesis §5.3.4),
+/// whose coarse agreement here is partly the discretisation's stiffness.
+#[test]
+fn fine_mesh_follows_the_converged_axisymmetric_section() {
+    let run_3mm = |mesh| {
+        run_or_panic(&Options {
+            until: 3.0,
+            mesh,
+            ..Default::default()
+        })
+    };
+    let c = curves(false);
+    let section = run_3mm(Mesh::Axisymmetric);
+    report("axisymmetric section 10 × 60, μ = 0, 3 mm", &section, &c);
+    let converged = run_3mm(Mesh::AxisymmetricFine);
+    report("axisymmetric section 16 × 120, μ = 0, 3 mm", &converged, &c);
+    let fine = run_3mm(Mesh::Fine);
+    report("fine, μ = 0, 3 mm", &fine, &c);
+    for r in [&section, &converged, &fine] {
+        assert!(r.converged, "{:?}", r.failure);
+        assert!((r.reached() - 3.0).abs() < 1e-9, "reached {}", r.reached());
+    }
+    for u in [1.5, 2.0, 3.0] {
+        let f = converged.force_at(u);
+        let refinement = section.force_at(u) / f - 1.0;
+        assert!(
+            refinement.abs() < 0.005,
+            "u = {u}: section refined by {refinement}"
+        );
+        let three_d = fine.force_at(u) / f - 1.0;
+        assert!(
+            three_d.abs() < 0.015,
+            "u = {u}: fine 3-D off the section by {three_d}"
+        );
+    }
+    for &(u, mean) in FRICTIONLESS_MEAN.iter().filter(|(u, _)| *u <= 2.0) {
+        let d = converged.force_at(u) / mean - 1.0;
+        assert!(
+            (-0.12..-0.05).contains(&d),
+            "u = {u}: converged section {:.1} % from the Abaqus/FEBio mean",
+            100.0 * d
+        );
     }
 }

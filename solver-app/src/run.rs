@@ -200,6 +200,8 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
         let mut t0 = t_prev;
         let mut h = t - t_prev;
         let mut cuts = 0;
+        // attempts that diverged: the next ones start more relaxed
+        let mut diverged = 0;
         let result = loop {
             let t1 = if t0 + h >= t - 1e-9 * (t - t_prev) {
                 t
@@ -239,6 +241,7 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
             }
             path.subtract_from(&path_end);
             solver.set_step(&path);
+            solver.set_divergence_retries(diverged);
             let attempt = solver.solve_increment(&mut bodies, &mut contacts, |outer, res| {
                 if trace_outer {
                     eprintln!("  outer {outer}: residual {res:.3e}");
@@ -261,9 +264,12 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
                     ),
                     Err(e) => e.to_string(),
                 };
-                if let Ok(info) = &attempt {
-                    total.outer_iterations += info.outer_iterations;
-                    total.linear_iterations += info.linear_iterations;
+                match &attempt {
+                    Ok(info) => {
+                        total.outer_iterations += info.outer_iterations;
+                        total.linear_iterations += info.linear_iterations;
+                    }
+                    Err(_) => diverged += 1,
                 }
                 for b in bodies.iter_mut() {
                     b.restore_start();

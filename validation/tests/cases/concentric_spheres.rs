@@ -279,9 +279,14 @@ fn full_travel_fine_frictional() {
 }
 
 /// The benchmark's polyMesh, frictionless, 9 mm. Measured (Rhie–Chow 1):
-/// FAILS — stops at 7.7 mm (as with 0.1, at 7.8 mm); F = 0.760, 1.229,
-/// 1.808, 2.465 N at 2, 3, 4, 5 mm (4.6 % over 1.5–4.5 mm: within the
-/// 5 %), then 5.21 N at 7 mm (+60 %): its facets of the sphere–sphere
+/// FAILS — stops at 8.4 mm (7.7 mm before the outer loop's cycle and
+/// divergence safeguards, README "Outer iterations"; with 0.1, 7.8 mm);
+/// F = 0.761, 1.230, 1.808, 2.470 N at 2, 3, 4, 5 mm (4.4 % over 1.5–4.5
+/// mm: within the 5 %), then 4.09 N at 7 mm and 7.05 N at 8 mm (+26 %,
+/// +81 %), 216 outer iterations per increment, 35 s. At 7.6 mm it used to
+/// cycle between two contact states (plate force 6.75 and 4.27 N) at
+/// every cut-back; at 8.0 and 8.45 mm every step down to 1/16 diverges
+/// within 20 outer iterations of the converged state. Its facets of the sphere–sphere
 /// interface overlap by up to 0.15 mm at the start (45 against 125 faces
 /// per quarter on r = 12). 1,180 outer iterations per increment.
 /// Where it goes wrong (`fvc run polymesh.toml` with edits): the overlap

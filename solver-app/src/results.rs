@@ -76,14 +76,15 @@ pub fn history_columns(bodies: &[Body], contacts: &ContactSet) -> Vec<String> {
             cols.push(format!("{name}:{c}"));
         }
     }
-    for c in &contacts.interfaces {
-        cols.push(format!("{}:normal_force", c.slave_name));
+    let labels = contact_labels(contacts);
+    for label in &labels {
+        cols.push(format!("{label}:normal_force"));
     }
     // beyond CASE_FORMAT.md, after its columns: the area in contact, so
     // that the mean pressure F_n/A (and the mean penetration F_n/(ε_n A)
     // of the linear penalty, eq. 4.4a) can be followed
-    for c in &contacts.interfaces {
-        cols.push(format!("{}:contact_area", c.slave_name));
+    for label in &labels {
+        cols.push(format!("{label}:contact_area"));
     }
     for (_, _, name) in moment_patches(bodies) {
         for c in ["Mx", "My", "Mz"] {
@@ -91,6 +92,28 @@ pub fn history_columns(bodies: &[Body], contacts: &ContactSet) -> Vec<String> {
         }
     }
     cols
+}
+
+/// Name of each contact pair in the history columns: its slave patch
+/// (`<body>/<patch>`, CASE_FORMAT.md), or `<slave>@<master>` when the slave
+/// patch is in several pairs, so that no two columns share a name.
+fn contact_labels(contacts: &ContactSet) -> Vec<String> {
+    let pairs = &contacts.interfaces;
+    pairs
+        .iter()
+        .map(|c| {
+            if pairs
+                .iter()
+                .filter(|o| o.slave_name == c.slave_name)
+                .count()
+                > 1
+            {
+                format!("{}@{}", c.slave_name, c.master_name)
+            } else {
+                c.slave_name.clone()
+            }
+        })
+        .collect()
 }
 
 /// Patches of deformable bodies with a `rigid-motion` condition that has a

@@ -304,5 +304,16 @@ type = "symmetry"
                 "{r:?}"
             );
         }
+        // history.csv: the shared slave patch's pairs are told apart by
+        // their master (`<slave>@<master>`), one column each
+        let (_, history) = validation::run_toml_with_history(&format!(
+            "{block}{}{}",
+            punch("left", 0.0, 0.5, coupling),
+            punch("right", 0.5, 1.0, coupling)
+        ));
+        for (master, f) in [("left", fl), ("right", fr)] {
+            let column = history.column(&format!("block/ymax@{master}/ymin:normal_force"));
+            assert!((column[0] - f).abs() <= 1e-9 * f, "{master}: {column:?}");
+        }
     }
 }

@@ -73,23 +73,28 @@ pub fn spherical_shell_mesh(
         )));
     }
     let [radial, quarter] = cells;
-    if part == ShellPart::Wedge && radial >= 1 && (2..=10_000_000).contains(&quarter) {
-        return axisymmetric_wedge(
-            &graded_coordinates(r_inner, r_outer, radial, radial_grading),
-            quarter,
-        );
-    }
-    if radial == 0 || quarter < 2 || quarter % 2 != 0 {
+    let wedge = part == ShellPart::Wedge;
+    if radial == 0 || quarter < 2 || (quarter % 2 != 0 && !wedge) {
         return Err(MeshError::invalid(format!(
-            "spherical-shell: need cells = [radial >= 1, quarter even >= 2], got {cells:?}"
+            "spherical-shell: need cells = [radial >= 1, quarter even >= 2 (any >= 2 for the wedge)], got {cells:?}"
         )));
     }
     let m = (quarter / 2) as i64;
-    let per_layer = 24 * (m as u128).pow(2);
+    let per_layer = if wedge {
+        quarter as u128
+    } else {
+        24 * (m as u128).pow(2)
+    };
     if per_layer * radial as u128 > 50_000_000 {
         return Err(MeshError::invalid(format!(
             "spherical-shell: {cells:?} would make more than 5e7 cells"
         )));
+    }
+    if wedge {
+        return axisymmetric_wedge(
+            &graded_coordinates(r_inner, r_outer, radial, radial_grading),
+            quarter,
+        );
     }
 
     // Surface quadrilaterals of the cube, as lattice points, kept by part.

@@ -42,7 +42,7 @@ const FLOATING_STABILISATION: f64 = 1e-5;
 
 /// Outer iterations in a period-two cycle of the residual after which the
 /// displacement relaxation of the increment halves (beyond the thesis),
-/// down to [`CYCLE_MIN_FRACTION`] of the configured one. A Picard
+/// down to [`MIN_RELAXATION_FRACTION`] of the configured one. A Picard
 /// iteration whose map overshoots (an eigenvalue at or below −1) can
 /// settle into a cycle that no number of iterations leaves: the benchmark
 /// mesh of the concentric spheres, its inner sphere buckled onto the base
@@ -61,8 +61,9 @@ const CYCLE_PATIENCE: usize = 500;
 const CYCLE_MATCH: f64 = 1e-3;
 /// Smallest relative change from one iteration to the next in a cycle.
 const CYCLE_SWING: f64 = 1e-2;
-/// Smallest fraction of the configured displacement relaxation.
-const CYCLE_MIN_FRACTION: f64 = 1.0 / 16.0;
+/// Smallest fraction of the configured displacement relaxation, after
+/// cycles or diverged attempts ([`SegregatedSolver::set_divergence_retries`]).
+const MIN_RELAXATION_FRACTION: f64 = 1.0 / 16.0;
 
 /// Components with matrices of their own are solved side by side from this
 /// many unknowns (below, handing them to the thread pool costs more than it
@@ -928,7 +929,9 @@ impl SegregatedSolver {
     /// 20 outer iterations from the same converged state. 0 for a new
     /// increment.
     pub fn set_divergence_retries(&mut self, retries: u32) {
-        self.start_fraction = 0.5f64.powi(retries.min(4) as i32);
+        self.start_fraction = 0.5f64
+            .powi(retries.min(16) as i32)
+            .max(MIN_RELAXATION_FRACTION);
     }
 
     /// Solves one load increment by outer iterations; on entry the bodies
@@ -963,7 +966,7 @@ impl SegregatedSolver {
             (before_last, last) = (last, residual);
             if in_cycle >= CYCLE_PATIENCE
                 && self.anderson.is_none()
-                && self.relaxation_fraction > CYCLE_MIN_FRACTION
+                && self.relaxation_fraction > MIN_RELAXATION_FRACTION
             {
                 self.relaxation_fraction *= 0.5;
                 in_cycle = 0;

@@ -291,13 +291,13 @@ fn generate_spherical_shell(t: &Table<'_>) -> Res<MeshSpec> {
             "the cells along a quarter circle must be even, got {quarter}"
         )));
     }
+    let squares = (quarter as u128 / 2).pow(2);
     let per_layer: u128 = match part {
-        ShellPart::Octant => 3,
-        ShellPart::Hemisphere => 12,
-        ShellPart::Sphere => 24,
-        ShellPart::Wedge => 0,
-    } * (quarter as u128 / 2).pow(2)
-        + u128::from(part == ShellPart::Wedge) * quarter as u128;
+        ShellPart::Octant => 3 * squares,
+        ShellPart::Hemisphere => 12 * squares,
+        ShellPart::Sphere => 24 * squares,
+        ShellPart::Wedge => quarter as u128,
+    };
     if per_layer * radial as u128 > MAX_GENERATED_CELLS {
         return Err(n.err(format!(
             "[{radial}, {quarter}] makes {} cells, more than the generator limit of {MAX_GENERATED_CELLS}",

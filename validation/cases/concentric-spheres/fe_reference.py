@@ -183,7 +183,7 @@ def mesh(nr, nt):
             if faces:
                 blocks.append((2, t, ty, faces))
     total = sum(len(b[3]) for b in blocks)
-    out("$Elements\n" if False else "%d %d 1 %d\n" % (len(blocks), total, total))
+    out("%d %d 1 %d\n" % (len(blocks), total, total))
     tag = 1
     for dim, ent, ty, els in blocks:
         out("%d %d %d %d\n" % (dim, ent, ty, len(els)))

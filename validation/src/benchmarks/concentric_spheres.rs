@@ -342,23 +342,18 @@ pub fn run_pole_load() -> ([f64; 3], bool) {
     let body = &out.bodies[0];
     let ni = body.mesh.n_internal_faces();
     let radius = |f: usize| body.geom.face_centres[f].xy().norm();
-    // u_b of the face of `patch` with the least (or, `far`, the largest) radius
-    let pick = |patch: &str, far: bool| {
+    // the face of `patch` with the least radius times `sign`, and its u_b
+    let pick = |patch: &str, sign: f64| {
         let p = body.mesh.patch_index(patch)?;
-        let f = body.mesh.patches[p].faces().min_by(|&a, &b| {
-            let o = radius(a).total_cmp(&radius(b));
-            if far {
-                o.reverse()
-            } else {
-                o
-            }
-        })?;
+        let f = body.mesh.patches[p]
+            .faces()
+            .min_by(|&a, &b| (sign * radius(a)).total_cmp(&(sign * radius(b))))?;
         Some((f, body.momentum.u_b[f - ni]))
     };
     let value = || -> Option<[f64; 3]> {
-        let (_, outer) = pick("cap", false)?;
-        let (_, inner) = pick("inner", false)?;
-        let (f, rim) = pick("rim", true)?;
+        let (_, outer) = pick("cap", 1.0)?;
+        let (_, inner) = pick("inner", 1.0)?;
+        let (f, rim) = pick("rim", -1.0)?;
         let x = body.geom.face_centres[f];
         Some([outer.z, inner.z, (rim.x * x.x + rim.y * x.y) / radius(f)])
     };

@@ -14,7 +14,9 @@
 //!
 //! with f = δ the correction of the linear solve, ΔX and ΔF the differences
 //! of successive iterates and corrections, β the under-relaxation. With
-//! m = 0 it is the plain iteration.
+//! m = 0 it is the plain iteration. The solver's iterate x is the whole
+//! state an outer iteration starts from, cells and boundary faces
+//! (`SegregatedSolver::mix_iterates`).
 //!
 //! Written by hand: a few dot products and an m×m solve on the solver's
 //! own stacked vectors; no crate offers it on these types. All storage is

@@ -168,8 +168,12 @@ pub struct SegregatedSolver {
     /// Largest relative change of the applied contact tractions at the
     /// last contact update ([`ContactSet::update`]).
     contact_change: f64,
-    /// Stacked displacement (workspace of the acceleration).
+    /// Stacked iterate of the acceleration (workspace): the cells'
+    /// displacement, then per deformable body its boundary values u_b and
+    /// normal derivatives n·∇u (the state the next iteration starts from).
     u_work: Vec<Vector>,
+    /// Its correction (workspace).
+    f_work: Vec<Vector>,
     /// First iterate of an increment (`solver.predictor = "linear"`).
     predictor: Option<LinearPredictor>,
     /// Seconds per phase (the contact phases are in the contact set's).
@@ -272,6 +276,13 @@ impl SegregatedSolver {
             .iter()
             .map(|b| b.extent)
             .fold(f64::MIN_POSITIVE, f64::max);
+        // the acceleration's iterate: cells, then boundary values and normal
+        // derivatives of every deformable body's boundary faces
+        let n_mixed = n + 2 * bodies
+            .iter()
+            .filter(|b| !b.rigid)
+            .map(|b| b.momentum.u_b.len())
+            .sum::<usize>();
         SegregatedSolver {
             matrices: vec![matrix],
             component_matrix: [Some(0), Some(0), Some(0)],
@@ -306,13 +317,18 @@ impl SegregatedSolver {
             new_spring_slots: Vec::new(),
             anderson: match settings.acceleration {
                 Acceleration::None => None,
-                Acceleration::Anderson => {
-                    Some(AndersonAcceleration::new(n, settings.acceleration_depth))
-                }
+                Acceleration::Anderson => Some(AndersonAcceleration::new(
+                    n_mixed,
+                    settings.acceleration_depth,
+                )),
             },
             u_work: match settings.acceleration {
                 Acceleration::None => Vec::new(),
-                Acceleration::Anderson => vec![Vector::zeros(); n],
+                Acceleration::Anderson => vec![Vector::zeros(); n_mixed],
+            },
+            f_work: match settings.acceleration {
+                Acceleration::None => Vec::new(),
+                Acceleration::Anderson => vec![Vector::zeros(); n_mixed],
             },
             predictor: match settings.predictor {
                 Predictor::None => None,
@@ -680,6 +696,9 @@ impl SegregatedSolver {
         contacts: &mut ContactSet,
     ) -> Result<(f64, usize), SolveError> {
         let mut linear_iterations = 0;
+        if self.anderson.is_some() {
+            self.snapshot_boundary_state(bodies);
+        }
         if !contacts.is_empty() {
             // boundary values consistent with the last solve, so that the
             // contact surfaces (and u_b* of eq. 4.52) are not one step behind
@@ -706,11 +725,8 @@ impl SegregatedSolver {
         let mut norm_delta = 0.0;
         let mut norm_incr = 0.0;
         let mut norm_total = 0.0;
-        if let Some(anderson) = &mut self.anderson {
-            for b in bodies.iter().filter(|b| !b.rigid) {
-                self.u_work[b.offset..b.offset + b.mesh.n_cells].copy_from_slice(&b.momentum.u);
-            }
-            anderson.step(&mut self.u_work, &self.delta, self.relaxation);
+        if self.anderson.is_some() {
+            self.mix_iterates(bodies);
         }
         let applied = self.relaxation * self.relaxation_fraction;
         for b in bodies.iter_mut().filter(|b| !b.rigid) {
@@ -725,6 +741,9 @@ impl SegregatedSolver {
                 norm_delta += (d * self.relaxation).norm_squared();
                 norm_incr += (*u - self.u_start[off + i]).norm_squared();
                 norm_total += u.norm_squared();
+            }
+            if self.anderson.is_some() {
+                b.momentum.refresh_gradient(&b.mesh);
             }
         }
         if !norm_delta.is_finite() {
@@ -858,6 +877,62 @@ impl SegregatedSolver {
             }
         }
         Ok(info.iterations + info.linear_iterations)
+    }
+
+    /// The boundary part of the acceleration's iterate at the start of an
+    /// outer iteration: u_b and n·∇u of every deformable body into
+    /// `u_work`, after the cells (their correction is taken at the end).
+    fn snapshot_boundary_state(&mut self, bodies: &[Body]) {
+        let mut at = self.n;
+        for b in bodies.iter().filter(|b| !b.rigid) {
+            let nb = b.momentum.u_b.len();
+            self.u_work[at..at + nb].copy_from_slice(&b.momentum.u_b);
+            self.u_work[at + nb..at + 2 * nb].copy_from_slice(&b.momentum.snd_b);
+            at += 2 * nb;
+        }
+    }
+
+    /// Anderson step over the whole state of the outer iteration: the
+    /// cells with their correction δ, and every boundary face's value u_b
+    /// and normal derivative n·∇u (eq. 3.23) with the change this iteration
+    /// made to them. Those are iterated alongside the cells, so the map
+    /// from one iteration's start to the next's depends on them too; mixed
+    /// on the cells alone, the map the history describes has a memory the
+    /// mixing cannot see (plane-stress cantilever: 3,177 outer iterations
+    /// at depth 5, 613 over the whole state; a block under a traction 96
+    /// against 38 with direct linear solves). The mixed cells are applied
+    /// by the caller; the boundary state is written back here.
+    fn mix_iterates(&mut self, bodies: &mut [Body]) {
+        let Some(anderson) = &mut self.anderson else {
+            return;
+        };
+        let beta = self.relaxation;
+        let mut at = self.n;
+        for b in bodies.iter().filter(|b| !b.rigid) {
+            let (off, nc) = (b.offset, b.mesh.n_cells);
+            self.u_work[off..off + nc].copy_from_slice(&b.momentum.u);
+            self.f_work[off..off + nc].copy_from_slice(&self.delta[off..off + nc]);
+            let boundary = b.momentum.u_b.iter().chain(&b.momentum.snd_b);
+            let nb2 = 2 * b.momentum.u_b.len();
+            for ((f, x), v) in self.f_work[at..at + nb2]
+                .iter_mut()
+                .zip(&self.u_work[at..at + nb2])
+                .zip(boundary)
+            {
+                *f = (v - x) / beta;
+            }
+            at += nb2;
+        }
+        anderson.step(&mut self.u_work, &self.f_work, beta);
+        let mut at = self.n;
+        for b in bodies.iter_mut().filter(|b| !b.rigid) {
+            let nb = b.momentum.u_b.len();
+            b.momentum.u_b.copy_from_slice(&self.u_work[at..at + nb]);
+            b.momentum
+                .snd_b
+                .copy_from_slice(&self.u_work[at + nb..at + 2 * nb]);
+            at += 2 * nb;
+        }
     }
 
     /// Refreshes boundary values, gradient, stress, residual and boundary

@@ -140,12 +140,21 @@ pub enum LinearMethod {
     BicgstabIlu,
 }
 
+/// Default relative tolerance of the linear solves under Anderson
+/// acceleration. The mixing models the outer iteration as one fixed map;
+/// a Krylov solve stopped at 0.1 is a different map at every iteration
+/// (plane-stress cantilever at depth 10: 1,123 outer iterations at 0.1,
+/// 494 at 0.01, 86 at 1e-3, 72 at 1e-6, 69 with direct solves; a block
+/// under a traction, depth 10: 156, 48, 42, 40, 38).
+pub const ANDERSON_LINEAR_TOLERANCE: f64 = 1e-3;
+
 /// `solver.linear`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LinearSettings {
     /// Method (default pcg-ic).
     pub method: LinearMethod,
-    /// Relative residual reduction per outer iteration, in (0, 1) (default 0.1).
+    /// Relative residual reduction per outer iteration, in (0, 1) (default
+    /// 0.1; [`ANDERSON_LINEAR_TOLERANCE`] under Anderson acceleration).
     pub tolerance: f64,
     /// Iteration cap (>= 1, default 500).
     pub max_iterations: usize,
@@ -181,7 +190,7 @@ pub struct SolverSettings {
     pub rhie_chow_history: RhieChowHistory,
     /// Outer-iteration acceleration (default none).
     pub acceleration: Acceleration,
-    /// Iterates mixed by Anderson acceleration (1–20, default 5).
+    /// Iterates mixed by Anderson acceleration (1–20, default 10).
     pub acceleration_depth: usize,
     /// First iterate of each increment (default linear under large strain,
     /// none otherwise).
@@ -199,7 +208,7 @@ impl Default for SolverSettings {
             rhie_chow: 0.1,
             rhie_chow_history: RhieChowHistory::Incremental,
             acceleration: Acceleration::None,
-            acceleration_depth: 5,
+            acceleration_depth: 10,
             predictor: Predictor::None,
         }
     }
@@ -377,11 +386,27 @@ pub(crate) fn solver(t: &Table<'_>, defaults: &SolverSettings) -> Res<SolverSett
         "predictor",
     ])?;
     let d = *defaults;
+    let acceleration = t.opt("acceleration", d.acceleration, |n| {
+        n.choice(
+            "outer-iteration acceleration",
+            &[
+                ("none", Acceleration::None),
+                ("anderson", Acceleration::Anderson),
+            ],
+        )
+    })?;
+    let linear_defaults = match acceleration {
+        Acceleration::None => d.linear,
+        Acceleration::Anderson => LinearSettings {
+            tolerance: ANDERSON_LINEAR_TOLERANCE,
+            ..d.linear
+        },
+    };
     let linear = match t.get("linear") {
-        None => d.linear,
+        None => linear_defaults,
         Some(l) => {
             let node = l.node();
-            linear(&node.table()?)?
+            linear(&node.table()?, &linear_defaults)?
         }
     };
     Ok(SolverSettings {
@@ -412,15 +437,7 @@ pub(crate) fn solver(t: &Table<'_>, defaults: &SolverSettings) -> Res<SolverSett
                 ],
             )
         })?,
-        acceleration: t.opt("acceleration", d.acceleration, |n| {
-            n.choice(
-                "outer-iteration acceleration",
-                &[
-                    ("none", Acceleration::None),
-                    ("anderson", Acceleration::Anderson),
-                ],
-            )
-        })?,
+        acceleration,
         acceleration_depth: t.opt("acceleration_depth", d.acceleration_depth, |n| {
             let m = n.usize_min(1)?;
             if m > crate::anderson::MAX_DEPTH {
@@ -440,9 +457,8 @@ pub(crate) fn solver(t: &Table<'_>, defaults: &SolverSettings) -> Res<SolverSett
     })
 }
 
-fn linear(t: &Table<'_>) -> Res<LinearSettings> {
+fn linear(t: &Table<'_>, d: &LinearSettings) -> Res<LinearSettings> {
     t.deny_unknown(&["method", "tolerance", "max_iterations"])?;
-    let d = LinearSettings::default();
     Ok(LinearSettings {
         method: t.opt("method", d.method, |n| {
             n.choice(

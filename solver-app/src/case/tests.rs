@@ -164,6 +164,21 @@ every = 5
         "{e}"
     );
 
+    // under Anderson acceleration the linear solves default to a tighter
+    // tolerance and the history to depth 10; a given tolerance stands
+    let accelerated = MIN.replace(
+        "[[body]]",
+        "[solver]\nacceleration = \"anderson\"\n[[body]]",
+    );
+    let c = parse(&accelerated);
+    assert_eq!(c.solver.linear.tolerance, ANDERSON_LINEAR_TOLERANCE);
+    assert_eq!(c.solver.linear.method, LinearMethod::PcgIc);
+    assert_eq!(c.solver.acceleration_depth, 10);
+    let c = parse(&accelerated.replace("[[body]]", "linear = { method = \"pcg-ic\" }\n[[body]]"));
+    assert_eq!(c.solver.linear.tolerance, ANDERSON_LINEAR_TOLERANCE);
+    let c = parse(&accelerated.replace("[[body]]", "linear = { tolerance = 0.2 }\n[[body]]"));
+    assert_eq!(c.solver.linear.tolerance, 0.2);
+
     let direct = text.replace("bicgstab-ilu", "direct");
     assert_eq!(parse(&direct).solver.linear.method, LinearMethod::Direct);
     let pcg = text.replace("bicgstab-ilu", "pcg-ic");

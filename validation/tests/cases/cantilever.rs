@@ -50,13 +50,15 @@ type = "empty"
 }
 
 /// Within 2 % of Timoshenko; and Anderson acceleration of the outer
-/// iteration (beyond the thesis) reaches the same deflection in under a
-/// third of the outer iterations (measured 3,177 against 14,644).
+/// iteration (beyond the thesis; its defaults, depth 10 and linear
+/// tolerance 1e-3, over the cells and the boundary state) reaches the same
+/// deflection in a hundredth of the outer iterations (measured 86 against
+/// 14,644; 3,177 when it mixed the cells alone at depth 5).
 #[test]
 fn plane_stress_cantilever_tip_deflection_within_2_percent() {
     let (rel_plain, plain) = cantilever("");
     assert!(rel_plain < 0.02);
     let (rel, accelerated) = cantilever("acceleration = \"anderson\"");
     assert!((rel - rel_plain).abs() < 1e-4, "{rel} vs {rel_plain}");
-    assert!(accelerated * 3 < plain, "{accelerated} vs {plain}");
+    assert!(accelerated * 100 < plain, "{accelerated} vs {plain}");
 }

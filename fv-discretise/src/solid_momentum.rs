@@ -202,9 +202,10 @@ pub struct SolidMomentum {
     /// indentation) and depended on the number of increments; die drawing
     /// stalled at 0.1825 m and now runs to the end.
     face_state: Option<MaterialState>,
-    /// u, u_b and n·∇u at the start of the current attempt of an increment
-    /// (to redo it with a smaller step, [`Self::restore_start`]).
-    saved: (Vec<Vector>, Vec<Vector>, Vec<Vector>),
+    /// u, u_b, n·∇u and (small strain) the cell gradient at the start of
+    /// the current attempt of an increment (to redo it with a smaller step,
+    /// [`Self::restore_start`]).
+    saved: (Vec<Vector>, Vec<Vector>, Vec<Vector>, Vec<Tensor>),
     /// Cell gradient of the displacement on the current mesh: of u under
     /// small strain, of the increment Δu under the updated Lagrangian form.
     pub grad_u: Vec<Tensor>,
@@ -273,6 +274,7 @@ impl SolidMomentum {
                 vec![Vector::zeros(); nc],
                 vec![Vector::zeros(); nb],
                 vec![Vector::zeros(); nb],
+                vec![Tensor::zeros(); nc],
             ),
             grad_u: vec![Tensor::zeros(); nc],
             sigma: vec![Tensor::zeros(); nc],
@@ -465,6 +467,7 @@ impl SolidMomentum {
         self.saved.0.copy_from_slice(&self.u);
         self.saved.1.copy_from_slice(&self.u_b);
         self.saved.2.copy_from_slice(&self.snd_b);
+        self.saved.3.copy_from_slice(&self.grad_u);
     }
 
     /// Back to the fields of [`Self::save_start`], the trial material state
@@ -493,6 +496,11 @@ impl SolidMomentum {
                 }
             }
             self.grad_u.iter_mut().for_each(|g| *g = Tensor::zeros());
+        } else {
+            // small strain: the next boundary update extrapolates with the
+            // last gradient, which a diverged attempt may have left huge or
+            // non-finite (the retry then diverged in its first iteration)
+            self.grad_u.copy_from_slice(&self.saved.3);
         }
         if self.law.is_updated_lagrangian() {
             for ((d, u), o) in self.du.iter_mut().zip(&self.u).zip(&self.u_old) {

@@ -734,25 +734,6 @@ impl SolidMomentum {
         }
     }
 
-    /// The cell gradient of the current cell and boundary values, without
-    /// the stress (an outer-loop acceleration that sets u, u_b and n·∇u
-    /// makes the gradient of the next boundary update consistent with them).
-    pub fn refresh_gradient(&mut self, mesh: &PolyMesh) {
-        if self.law.is_updated_lagrangian() {
-            for ((d, u), o) in self.du.iter_mut().zip(&self.u).zip(&self.u_old) {
-                *d = u - o;
-            }
-            for ((d, u), o) in self.du_b.iter_mut().zip(&self.u_b).zip(&self.u_b_old) {
-                *d = u - o;
-            }
-            self.gradient
-                .vector_gradient(mesh, &self.du, &self.du_b, &mut self.grad_u);
-        } else {
-            self.gradient
-                .vector_gradient(mesh, &self.u, &self.u_b, &mut self.grad_u);
-        }
-    }
-
     /// Cell gradient (least squares) and stress from the current fields:
     /// σ of the total gradient (small strain), or σ from the increment
     /// gradient and the committed state, and σ̂ = jσ·f⁻ᵀ (updated Lagrangian).

@@ -177,7 +177,7 @@ fn build(t: &Table<'_>, source: CaseSource) -> Res<Case> {
             ))
         }
     };
-    let solver_defaults = SolverSettings::for_analysis(&analysis);
+    let solver_defaults = SolverSettings::for_analysis(&analysis, t.get("contact").is_some());
     let solver = match t.get("solver") {
         Some(a) => settings::solver(&a.node().table()?, &solver_defaults)?,
         None => solver_defaults,

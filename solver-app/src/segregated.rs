@@ -165,12 +165,16 @@ pub struct SegregatedSolver {
     new_spring_slots: Vec<u32>,
     /// Outer-iteration acceleration (`solver.acceleration = "anderson"`).
     anderson: Option<AndersonAcceleration>,
+    /// Whether the current attempt uses it: an attempt after a diverged
+    /// one runs the plain iteration ([`Self::set_divergence_retries`]).
+    accelerate: bool,
     /// Largest relative change of the applied contact tractions at the
     /// last contact update ([`ContactSet::update`]).
     contact_change: f64,
     /// Stacked iterate of the acceleration (workspace): the cells'
-    /// displacement, then per deformable body its boundary values u_b and
-    /// normal derivatives n·∇u (the state the next iteration starts from).
+    /// displacement, then per deformable body its boundary values u_b,
+    /// normal derivatives n·∇u and cell gradient (the state the next
+    /// iteration starts from; [`mixed_state_len`]).
     u_work: Vec<Vector>,
     /// Its correction (workspace).
     f_work: Vec<Vector>,
@@ -276,12 +280,12 @@ impl SegregatedSolver {
             .iter()
             .map(|b| b.extent)
             .fold(f64::MIN_POSITIVE, f64::max);
-        // the acceleration's iterate: cells, then boundary values and normal
-        // derivatives of every deformable body's boundary faces
-        let n_mixed = n + 2 * bodies
+        // the acceleration's iterate: cells, then every deformable body's
+        // boundary values, normal derivatives and cell gradients
+        let n_mixed = n + bodies
             .iter()
             .filter(|b| !b.rigid)
-            .map(|b| b.momentum.u_b.len())
+            .map(mixed_state_len)
             .sum::<usize>();
         SegregatedSolver {
             matrices: vec![matrix],
@@ -315,6 +319,7 @@ impl SegregatedSolver {
             spring_entries: Vec::new(),
             spring_slots: Vec::new(),
             new_spring_slots: Vec::new(),
+            accelerate: true,
             anderson: match settings.acceleration {
                 Acceleration::None => None,
                 Acceleration::Anderson => Some(AndersonAcceleration::new(
@@ -696,8 +701,8 @@ impl SegregatedSolver {
         contacts: &mut ContactSet,
     ) -> Result<(f64, usize), SolveError> {
         let mut linear_iterations = 0;
-        if self.anderson.is_some() {
-            self.snapshot_boundary_state(bodies);
+        if self.accelerating() {
+            self.snapshot_mixed_state(bodies);
         }
         if !contacts.is_empty() {
             // boundary values consistent with the last solve, so that the
@@ -725,25 +730,24 @@ impl SegregatedSolver {
         let mut norm_delta = 0.0;
         let mut norm_incr = 0.0;
         let mut norm_total = 0.0;
-        if self.anderson.is_some() {
+        if self.accelerating() {
             self.mix_iterates(bodies);
         }
+        let accelerating = self.accelerating();
         let applied = self.relaxation * self.relaxation_fraction;
         for b in bodies.iter_mut().filter(|b| !b.rigid) {
             let off = b.offset;
             for (i, u) in b.momentum.u.iter_mut().enumerate() {
                 let d = self.delta[off + i];
-                match self.anderson {
-                    Some(_) => *u = self.u_work[off + i],
-                    None => *u += d * applied,
+                if accelerating {
+                    *u = self.u_work[off + i];
+                } else {
+                    *u += d * applied;
                 }
                 // measured at the configured relaxation (CYCLE_PATIENCE)
                 norm_delta += (d * self.relaxation).norm_squared();
                 norm_incr += (*u - self.u_start[off + i]).norm_squared();
                 norm_total += u.norm_squared();
-            }
-            if self.anderson.is_some() {
-                b.momentum.refresh_gradient(&b.mesh);
             }
         }
         if !norm_delta.is_finite() {
@@ -879,29 +883,31 @@ impl SegregatedSolver {
         Ok(info.iterations + info.linear_iterations)
     }
 
-    /// The boundary part of the acceleration's iterate at the start of an
-    /// outer iteration: u_b and n·∇u of every deformable body into
-    /// `u_work`, after the cells (their correction is taken at the end).
-    fn snapshot_boundary_state(&mut self, bodies: &[Body]) {
+    /// The acceleration's iterate besides the cells at the start of an
+    /// outer iteration: u_b, n·∇u and the cell gradient of every deformable
+    /// body into `u_work` (their change is taken at the end).
+    fn snapshot_mixed_state(&mut self, bodies: &[Body]) {
         let mut at = self.n;
         for b in bodies.iter().filter(|b| !b.rigid) {
-            let nb = b.momentum.u_b.len();
-            self.u_work[at..at + nb].copy_from_slice(&b.momentum.u_b);
-            self.u_work[at + nb..at + 2 * nb].copy_from_slice(&b.momentum.snd_b);
-            at += 2 * nb;
+            let len = mixed_state_len(b);
+            read_mixed_state(b, &mut self.u_work[at..at + len]);
+            at += len;
         }
     }
 
     /// Anderson step over the whole state of the outer iteration: the
-    /// cells with their correction δ, and every boundary face's value u_b
-    /// and normal derivative n·∇u (eq. 3.23) with the change this iteration
-    /// made to them. Those are iterated alongside the cells, so the map
-    /// from one iteration's start to the next's depends on them too; mixed
-    /// on the cells alone, the map the history describes has a memory the
-    /// mixing cannot see (plane-stress cantilever: 3,177 outer iterations
-    /// at depth 5, 613 over the whole state; a block under a traction 96
-    /// against 38 with direct linear solves). The mixed cells are applied
-    /// by the caller; the boundary state is written back here.
+    /// cells with their correction δ, and with the change this iteration
+    /// made to them every boundary face's value u_b and normal derivative
+    /// n·∇u (eq. 3.23) and the cell gradient the next boundary update
+    /// extrapolates with. All are carried from one iteration to the next,
+    /// so the map the history describes depends on all of them; mixed on
+    /// the cells alone it has a memory the mixing cannot see (plane-stress
+    /// cantilever: 3,177 outer iterations at depth 5, 85 over the whole
+    /// state). The gradient is mixed rather than recomputed from the mixed
+    /// cells and boundary values: those two are not a consistent pair, and
+    /// across a thin wedge cell their mismatch is a huge hoop gradient (the
+    /// shell under a pole load diverged; now 70 against 491 plain). The
+    /// mixed cells are applied by the caller; the rest is written back here.
     fn mix_iterates(&mut self, bodies: &mut [Body]) {
         let Some(anderson) = &mut self.anderson else {
             return;
@@ -912,26 +918,21 @@ impl SegregatedSolver {
             let (off, nc) = (b.offset, b.mesh.n_cells);
             self.u_work[off..off + nc].copy_from_slice(&b.momentum.u);
             self.f_work[off..off + nc].copy_from_slice(&self.delta[off..off + nc]);
-            let boundary = b.momentum.u_b.iter().chain(&b.momentum.snd_b);
-            let nb2 = 2 * b.momentum.u_b.len();
-            for ((f, x), v) in self.f_work[at..at + nb2]
-                .iter_mut()
-                .zip(&self.u_work[at..at + nb2])
-                .zip(boundary)
-            {
-                *f = (v - x) / beta;
+            // the state this iteration left, less the one it started from
+            let len = mixed_state_len(b);
+            let f = &mut self.f_work[at..at + len];
+            read_mixed_state(b, f);
+            for (f, x) in f.iter_mut().zip(&self.u_work[at..at + len]) {
+                *f = (*f - x) / beta;
             }
-            at += nb2;
+            at += len;
         }
         anderson.step(&mut self.u_work, &self.f_work, beta);
         let mut at = self.n;
         for b in bodies.iter_mut().filter(|b| !b.rigid) {
-            let nb = b.momentum.u_b.len();
-            b.momentum.u_b.copy_from_slice(&self.u_work[at..at + nb]);
-            b.momentum
-                .snd_b
-                .copy_from_slice(&self.u_work[at + nb..at + 2 * nb]);
-            at += 2 * nb;
+            let len = mixed_state_len(b);
+            write_mixed_state(b, &self.u_work[at..at + len]);
+            at += len;
         }
     }
 
@@ -987,11 +988,16 @@ impl SegregatedSolver {
         Ok(self.body_updates.iter_mut().find_map(|u| u.inverted.take()))
     }
 
+    /// Whether the current attempt mixes its iterates (Anderson).
+    fn accelerating(&self) -> bool {
+        self.anderson.is_some() && self.accelerate
+    }
+
     /// Whether the contact tractions have settled enough for the
     /// displacement residual to decide convergence
     /// ([`ANDERSON_CONTACT_SETTLED`]; always without acceleration).
     fn contact_settled(&self) -> bool {
-        self.anderson.is_none() || self.contact_change <= ANDERSON_CONTACT_SETTLED
+        !self.accelerating() || self.contact_change <= ANDERSON_CONTACT_SETTLED
     }
 
     /// The attempts at the current load increment that diverged so far
@@ -1004,6 +1010,9 @@ impl SegregatedSolver {
     /// 20 outer iterations from the same converged state. 0 for a new
     /// increment.
     pub fn set_divergence_retries(&mut self, retries: u32) {
+        // the acceleration extrapolates from its history; after a diverged
+        // attempt the plain, under-relaxed iteration is the safer one
+        self.accelerate = retries == 0;
         self.start_fraction = 0.5f64
             .powi(retries.min(16) as i32)
             .max(MIN_RELAXATION_FRACTION);
@@ -1040,7 +1049,7 @@ impl SegregatedSolver {
             in_cycle = if cycling { in_cycle + 1 } else { 0 };
             (before_last, last) = (last, residual);
             if in_cycle >= CYCLE_PATIENCE
-                && self.anderson.is_none()
+                && !self.accelerating()
                 && self.relaxation_fraction > MIN_RELAXATION_FRACTION
             {
                 self.relaxation_fraction *= 0.5;
@@ -1099,6 +1108,39 @@ struct BodyUpdate {
 
 /// Boundary values, gradient and stress, and force residual of one body
 /// from its current displacement (nothing for a rigid body).
+/// Length of a body's part of the accelerated iterate besides its cells:
+/// boundary values and normal derivatives per boundary face, and the cell
+/// gradient as three columns per cell.
+fn mixed_state_len(b: &Body) -> usize {
+    2 * b.momentum.u_b.len() + 3 * b.momentum.grad_u.len()
+}
+
+/// A body's u_b, n·∇u and cell gradient into `out` ([`mixed_state_len`]).
+fn read_mixed_state(b: &Body, out: &mut [Vector]) {
+    let m = &b.momentum;
+    let nb = m.u_b.len();
+    out[..nb].copy_from_slice(&m.u_b);
+    out[nb..2 * nb].copy_from_slice(&m.snd_b);
+    for (cols, g) in out[2 * nb..].chunks_exact_mut(3).zip(&m.grad_u) {
+        for (j, c) in cols.iter_mut().enumerate() {
+            *c = g.column(j).into_owned();
+        }
+    }
+}
+
+/// The inverse of [`read_mixed_state`].
+fn write_mixed_state(b: &mut Body, state: &[Vector]) {
+    let m = &mut b.momentum;
+    let nb = m.u_b.len();
+    m.u_b.copy_from_slice(&state[..nb]);
+    m.snd_b.copy_from_slice(&state[nb..2 * nb]);
+    for (cols, g) in state[2 * nb..].chunks_exact(3).zip(m.grad_u.iter_mut()) {
+        for (j, c) in cols.iter().enumerate() {
+            g.set_column(j, c);
+        }
+    }
+}
+
 fn update_body_fields(b: &mut Body, params: &MomentumParams) -> BodyUpdate {
     let mut out = BodyUpdate::default();
     if b.rigid {

@@ -54,14 +54,27 @@ fn defaults() {
     assert_eq!(c.solver.relaxation, 1.0);
     assert_eq!(c.solver.on_nonconvergence, OnNonConvergence::Abort);
     assert_eq!(c.solver.linear.method, LinearMethod::PcgIc);
-    assert_eq!(c.solver.linear.tolerance, 0.1);
+    // no contact: Anderson acceleration, with its linear tolerance
+    assert_eq!(c.solver.acceleration, Acceleration::Anderson);
+    assert_eq!(c.solver.acceleration_depth, 10);
+    assert_eq!(c.solver.linear.tolerance, ANDERSON_LINEAR_TOLERANCE);
     assert_eq!(c.solver.linear.max_iterations, 500);
     assert_eq!(c.solver.rhie_chow, 0.1);
     assert_eq!(
         c.solver.rhie_chow_history,
         fv_discretise::RhieChowHistory::Incremental
     );
-    assert_eq!(c.solver, SolverSettings::default());
+    assert_eq!(
+        c.solver,
+        SolverSettings::for_analysis(&Analysis::default(), false)
+    );
+    // with contact the thesis's plain outer loop and linear tolerance 0.1
+    let with_contact = SolverSettings::for_analysis(&Analysis::default(), true);
+    assert_eq!(with_contact, SolverSettings::default());
+    assert_eq!(with_contact.acceleration, Acceleration::None);
+    assert_eq!(with_contact.linear.tolerance, 0.1);
+    let plain = parse(&MIN.replace("[[body]]", "[solver]\nacceleration = \"none\"\n[[body]]"));
+    assert_eq!(plain.solver.linear.tolerance, 0.1);
     assert_eq!(c.output.directory, PathBuf::from("results"));
     assert_eq!(c.output.every, 1);
     assert!(c.contacts.is_empty());
@@ -189,7 +202,7 @@ every = 5
     );
     let c = parse(&inline);
     assert_eq!(c.solver.linear.method, LinearMethod::Direct);
-    assert_eq!(c.solver.linear.tolerance, 0.1);
+    assert_eq!(c.solver.linear.tolerance, ANDERSON_LINEAR_TOLERANCE);
     assert_eq!(c.source.line_of("solver.linear.method"), Some(7));
 }
 

@@ -653,15 +653,16 @@ fn parallel_cylinders_friction_against_explicit() {
     assert!((fx_impl.abs() / 0.93616 - 1.0).abs() < 0.03, "Fx {fx_impl}");
 }
 
-/// Anderson acceleration (`acceleration = "anderson"`) mixes displacements
-/// and boundary values; the contact tractions follow by relaxation. On the sphere–block at
+/// Anderson acceleration (`acceleration = "anderson"`) mixes displacements,
+/// boundary values and gradients; the contact tractions follow by
+/// relaxation. On the sphere–block at
 /// ε_n/E_s = 1000 with the interpolated faces, its displacement correction
 /// fell below the tolerance 1e-6 after 137 outer iterations with the
 /// tractions still moving by 0.9 % per iteration, and the pressures 29 %
 /// from the converged ones (52 % at 1e-7). An accelerated increment now
 /// converges only once the tractions have settled as well
 /// (`ANDERSON_CONTACT_SETTLED` in `solver_app::segregated`). Measured:
-/// Anderson 551 outer iterations, plain 364; their pressures 3.2 % apart
+/// Anderson 550 outer iterations, plain 364; their pressures 2.3 % apart
 /// (502 and 3.8 % when it mixed the cells alone at depth 5 with the linear
 /// tolerance 0.1; with `fvc` then: 452 and 365, 2.4 % and 5.1 % from the
 /// converged ones at 1e-9). About 12 s.

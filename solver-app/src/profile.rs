@@ -24,11 +24,13 @@ pub enum Phase {
     ContactForce,
     /// Mesh motion and state commit at the end of an increment.
     MeshMotion,
+    /// Anderson mixing of the outer iterates (`solver.acceleration`).
+    Acceleration,
 }
 
 impl Phase {
     /// Every phase, in report order.
-    pub const ALL: [Phase; 8] = [
+    pub const ALL: [Phase; 9] = [
         Phase::MatrixAssembly,
         Phase::BoundaryValues,
         Phase::GradientAndStress,
@@ -37,6 +39,7 @@ impl Phase {
         Phase::ContactDetection,
         Phase::ContactForce,
         Phase::MeshMotion,
+        Phase::Acceleration,
     ];
 
     /// Name in the log and in `summary.json`.
@@ -50,6 +53,7 @@ impl Phase {
             Phase::ContactDetection => "contact_detection",
             Phase::ContactForce => "contact_force",
             Phase::MeshMotion => "mesh_motion",
+            Phase::Acceleration => "acceleration",
         }
     }
 }

@@ -702,7 +702,9 @@ impl SegregatedSolver {
     ) -> Result<(f64, usize), SolveError> {
         let mut linear_iterations = 0;
         if self.accelerating() {
+            let start = Instant::now();
             self.snapshot_mixed_state(bodies);
+            self.times.lap(Phase::Acceleration, start);
         }
         if !contacts.is_empty() {
             // boundary values consistent with the last solve, so that the
@@ -731,7 +733,9 @@ impl SegregatedSolver {
         let mut norm_incr = 0.0;
         let mut norm_total = 0.0;
         if self.accelerating() {
+            let start = Instant::now();
             self.mix_iterates(bodies);
+            self.times.lap(Phase::Acceleration, start);
         }
         let accelerating = self.accelerating();
         let applied = self.relaxation * self.relaxation_fraction;

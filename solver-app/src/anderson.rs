@@ -103,7 +103,7 @@ impl AndersonAcceleration {
             self.restart();
         }
         self.smallest_correction = self.smallest_correction.min(norm_f);
-        if self.has_prev {
+        let new_column = if self.has_prev {
             let s = self.next;
             for ((dx, df), ((xi, fi), (xp, fp))) in self.dx[s]
                 .iter_mut()
@@ -115,23 +115,29 @@ impl AndersonAcceleration {
             }
             self.count = (self.count + 1).min(self.depth);
             self.next = (self.next + 1) % self.depth;
-            for j in 0..self.depth {
-                if self.is_valid(j) {
-                    let g = dot(&self.df[s], &self.df[j]);
-                    self.gram[s * self.depth + j] = g;
-                    self.gram[j * self.depth + s] = g;
-                }
-            }
-        }
+            Some(s)
+        } else {
+            None
+        };
         self.x_prev.copy_from_slice(x);
         self.f_prev.copy_from_slice(f);
         self.has_prev = true;
+        // the new column's Gram row and the right-hand side ΔFᵀf, one pass
+        // over each stored column
         for j in 0..self.depth {
-            self.rhs[j] = if self.is_valid(j) {
-                dot(&self.df[j], f)
-            } else {
-                0.0
-            };
+            if !self.is_valid(j) {
+                self.rhs[j] = 0.0;
+                continue;
+            }
+            match new_column {
+                Some(s) => {
+                    let (g, r) = dot_pair(&self.df[j], &self.df[s], f);
+                    self.gram[s * self.depth + j] = g;
+                    self.gram[j * self.depth + s] = g;
+                    self.rhs[j] = r;
+                }
+                None => self.rhs[j] = dot(&self.df[j], f),
+            }
         }
         while self.count > 0 && !self.solve_normal_equations() {
             // drop the oldest column
@@ -225,6 +231,16 @@ pub const MAX_DEPTH: usize = 20;
 
 fn dot(a: &[Vector], b: &[Vector]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x.dot(y)).sum()
+}
+
+/// (a·b, a·c) in one pass over a.
+fn dot_pair(a: &[Vector], b: &[Vector], c: &[Vector]) -> (f64, f64) {
+    a.iter()
+        .zip(b)
+        .zip(c)
+        .fold((0.0, 0.0), |(ab, ac), ((x, y), z)| {
+            (ab + x.dot(y), ac + x.dot(z))
+        })
 }
 
 fn axpy(x: &mut [Vector], a: f64, f: &[Vector]) {

@@ -287,6 +287,10 @@ impl SegregatedSolver {
             .filter(|b| !b.rigid)
             .map(mixed_state_len)
             .sum::<usize>();
+        let mixed_workspace = match settings.acceleration {
+            Acceleration::None => Vec::new(),
+            Acceleration::Anderson => vec![Vector::zeros(); n_mixed],
+        };
         SegregatedSolver {
             matrices: vec![matrix],
             component_matrix: [Some(0), Some(0), Some(0)],
@@ -327,14 +331,8 @@ impl SegregatedSolver {
                     settings.acceleration_depth,
                 )),
             },
-            u_work: match settings.acceleration {
-                Acceleration::None => Vec::new(),
-                Acceleration::Anderson => vec![Vector::zeros(); n_mixed],
-            },
-            f_work: match settings.acceleration {
-                Acceleration::None => Vec::new(),
-                Acceleration::Anderson => vec![Vector::zeros(); n_mixed],
-            },
+            u_work: mixed_workspace.clone(),
+            f_work: mixed_workspace,
             predictor: match settings.predictor {
                 Predictor::None => None,
                 Predictor::Linear => Some(LinearPredictor::new(n)),
@@ -1110,8 +1108,6 @@ struct BodyUpdate {
     inverted: Option<String>,
 }
 
-/// Boundary values, gradient and stress, and force residual of one body
-/// from its current displacement (nothing for a rigid body).
 /// Length of a body's part of the accelerated iterate besides its cells:
 /// boundary values and normal derivatives per boundary face, and the cell
 /// gradient as three columns per cell.
@@ -1145,6 +1141,8 @@ fn write_mixed_state(b: &mut Body, state: &[Vector]) {
     }
 }
 
+/// Boundary values, gradient and stress, and force residual of one body
+/// from its current displacement (nothing for a rigid body).
 fn update_body_fields(b: &mut Body, params: &MomentumParams) -> BodyUpdate {
     let mut out = BodyUpdate::default();
     if b.rigid {

@@ -160,6 +160,20 @@ pub struct LinearSettings {
     pub max_iterations: usize,
 }
 
+impl LinearSettings {
+    /// The defaults under `acceleration`: a tighter tolerance under
+    /// Anderson ([`ANDERSON_LINEAR_TOLERANCE`]).
+    pub fn for_acceleration(acceleration: Acceleration) -> Self {
+        match acceleration {
+            Acceleration::None => Self::default(),
+            Acceleration::Anderson => Self {
+                tolerance: ANDERSON_LINEAR_TOLERANCE,
+                ..Self::default()
+            },
+        }
+    }
+}
+
 impl Default for LinearSettings {
     fn default() -> Self {
         Self {
@@ -375,7 +389,7 @@ impl SolverSettings {
         }
         if !has_contact {
             s.acceleration = Acceleration::Anderson;
-            s.linear.tolerance = ANDERSON_LINEAR_TOLERANCE;
+            s.linear = LinearSettings::for_acceleration(s.acceleration);
         }
         s
     }
@@ -404,16 +418,7 @@ pub(crate) fn solver(t: &Table<'_>, defaults: &SolverSettings) -> Res<SolverSett
             ],
         )
     })?;
-    let linear_defaults = match acceleration {
-        Acceleration::None => LinearSettings {
-            tolerance: LinearSettings::default().tolerance,
-            ..d.linear
-        },
-        Acceleration::Anderson => LinearSettings {
-            tolerance: ANDERSON_LINEAR_TOLERANCE,
-            ..d.linear
-        },
-    };
+    let linear_defaults = LinearSettings::for_acceleration(acceleration);
     let linear = match t.get("linear") {
         None => linear_defaults,
         Some(l) => {

@@ -26,6 +26,9 @@ pub const MASTER: &str = "foundation/ymax";
 /// The slave surface as shipped.
 pub const SLAVE: &str = "block/bottom";
 
+/// `penalty_scale` of the shipped case file.
+pub const CASE_PENALTY_SCALE: f64 = 4.0;
+
 /// How to run the case.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Options {
@@ -43,6 +46,8 @@ pub struct Options {
     pub relaxation: f64,
     /// Block arc master, foundation top slave.
     pub swapped: bool,
+    /// `Some(f)`: `penalty_scale = f` instead of the case file's.
+    pub penalty_scale: Option<f64>,
 }
 
 impl Default for Options {
@@ -55,6 +60,7 @@ impl Default for Options {
             implicit: None,
             relaxation: 0.1,
             swapped: false,
+            penalty_scale: None,
         }
     }
 }
@@ -159,6 +165,11 @@ pub fn case_text(opts: &Options) -> String {
             )
         }
         None => {}
+    }
+    if let Some(f) = opts.penalty_scale {
+        let shipped = format!("penalty_scale = {CASE_PENALTY_SCALE:?}");
+        assert!(text.contains(&shipped), "case.toml has no `{shipped}`");
+        text = text.replace(&shipped, &format!("penalty_scale = {f:?}"));
     }
     if opts.swapped {
         text = swap_master_slave(&text, MASTER, SLAVE);

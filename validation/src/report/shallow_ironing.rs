@@ -196,7 +196,7 @@ impl Section for ShallowIroningSection {
             "A block with a rounded bottom (E = 6,896 MPa) pressed 1 mm into a \
              foundation (E = 689.6 MPa) in 100 increments and dragged 10 mm along it \
              in 500, μ = 0.3, neo-Hookean, plane strain, N and mm; segment-to-segment \
-             with implicit coupling, `penalty_scale = 1`, Rhie–Chow 0.5 \
+             with implicit coupling, `penalty_scale = 4`, Rhie–Chow 0.5 \
              (`validation/cases/shallow-ironing/case.toml`). H and V are the reactions \
              on the block top per mm of thickness. References: the five curves of \
              `../shared/benchmarks/shallow-ironing/reference` (× 100 to N/mm).\n\n",

@@ -287,6 +287,8 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
                     total.outer_iterations += info.outer_iterations;
                     total.linear_iterations += info.linear_iterations;
                     total.residual = info.residual;
+                    total.required = info.required;
+                    total.contact_unsettled = info.contact_unsettled;
                     total.converged &= info.converged;
                     let go_on = info.converged
                         || case.solver.on_nonconvergence == OnNonConvergence::Continue;
@@ -299,8 +301,9 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
                         // `continue`: keep the unconverged sub-step and go on
                         // to the end of the increment
                         log.warn(&format!(
-                            "increment {k}: sub-step t = {t0:.6e} → {t1:.6e} did not converge in {} outer iterations (residual {:.3e}); continuing",
-                            info.outer_iterations, info.residual
+                            "increment {k}: sub-step t = {t0:.6e} → {t1:.6e} did not converge in {} outer iterations ({}); continuing",
+                            info.outer_iterations,
+                            info.shortfall(case.solver.tolerance)
                         ));
                     }
                     // a sub-step: accept it and go on
@@ -379,8 +382,9 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
                 }
                 if !info.converged {
                     let msg = format!(
-                        "increment {k} did not converge in {} outer iterations (residual {:.3e} > tolerance {:.1e})",
-                        info.outer_iterations, info.residual, case.solver.tolerance
+                        "increment {k} did not converge in {} outer iterations ({})",
+                        info.outer_iterations,
+                        info.shortfall(case.solver.tolerance)
                     );
                     match case.solver.on_nonconvergence {
                         OnNonConvergence::Abort => {

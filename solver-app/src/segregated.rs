@@ -86,6 +86,37 @@ pub struct IncrementInfo {
     pub converged: bool,
     /// Linear-solver iterations, summed over components and outer iterations.
     pub linear_iterations: usize,
+    /// The residual the last outer iteration had to reach: the tolerance,
+    /// tightened by a damped explicit contact relaxation
+    /// ([`ContactSet::explicit_relaxation_fraction`]).
+    pub required: f64,
+    /// The applied contact tractions still changed by more than
+    /// [`ANDERSON_CONTACT_SETTLED`] (relative) at the last outer iteration
+    /// of an accelerated increment.
+    pub contact_unsettled: bool,
+}
+
+impl IncrementInfo {
+    /// Why an increment that did not converge did not: the residual against
+    /// the threshold it had to reach, or the contact tractions.
+    pub fn shortfall(&self, tolerance: f64) -> String {
+        if self.residual < self.required && self.contact_unsettled {
+            format!(
+                "residual {:.3e}, but the contact tractions still changed by more than {ANDERSON_CONTACT_SETTLED:.0e} per outer iteration",
+                self.residual
+            )
+        } else if self.required < tolerance {
+            format!(
+                "residual {:.3e} > {:.3e}: the tolerance {:.1e} tightened with the damped explicit contact relaxation",
+                self.residual, self.required, tolerance
+            )
+        } else {
+            format!(
+                "residual {:.3e} > tolerance {:.1e}",
+                self.residual, tolerance
+            )
+        }
+    }
 }
 
 /// Why an increment failed.
@@ -1031,7 +1062,10 @@ impl SegregatedSolver {
         mut on_iteration: impl FnMut(usize, f64),
     ) -> Result<IncrementInfo, SolveError> {
         self.begin_increment(bodies, contacts);
-        let mut info = IncrementInfo::default();
+        let mut info = IncrementInfo {
+            required: self.tolerance,
+            ..Default::default()
+        };
         let has_force_control = bodies.iter().any(|b| !b.force_controls.is_empty());
         // the last two residuals and the iterations in a period-two cycle
         let (mut last, mut before_last, mut in_cycle) = (f64::NAN, f64::NAN, 0usize);
@@ -1075,9 +1109,9 @@ impl SegregatedSolver {
                     continue;
                 }
             }
-            if residual < self.tolerance * contacts.explicit_relaxation_fraction()
-                && self.contact_settled()
-            {
+            info.required = self.tolerance * contacts.explicit_relaxation_fraction();
+            info.contact_unsettled = !self.contact_settled();
+            if residual < info.required && !info.contact_unsettled {
                 info.converged = true;
                 break;
             }
@@ -1168,4 +1202,45 @@ fn update_body_fields(b: &mut Body, params: &MomentumParams) -> BodyUpdate {
         (t3 - t2).as_secs_f64(),
     ];
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The message of an unconverged increment names the threshold that
+    /// was missed: the tolerance itself, the tolerance tightened by a
+    /// damped explicit relaxation (the residual may then be below the
+    /// configured tolerance), or the contact tractions.
+    #[test]
+    fn shortfall_names_the_missed_threshold() {
+        let plain = IncrementInfo {
+            residual: 3e-6,
+            required: 1e-6,
+            ..Default::default()
+        };
+        assert_eq!(
+            plain.shortfall(1e-6),
+            "residual 3.000e-6 > tolerance 1.0e-6"
+        );
+        let tightened = IncrementInfo {
+            residual: 6.677e-7,
+            required: 2.5e-7,
+            ..Default::default()
+        };
+        let msg = tightened.shortfall(1e-6);
+        assert!(msg.starts_with("residual 6.677e-7 > 2.500e-7"), "{msg}");
+        assert!(msg.contains("tightened"), "{msg}");
+        let unsettled = IncrementInfo {
+            residual: 5e-7,
+            required: 1e-6,
+            contact_unsettled: true,
+            ..Default::default()
+        };
+        let msg = unsettled.shortfall(1e-6);
+        assert!(
+            msg.contains("contact tractions still changed by more than 1e-4"),
+            "{msg}"
+        );
+    }
 }

@@ -1,6 +1,7 @@
 //! Report section concentric-spheres (thesis §5.3.4): the force on the
-//! moving plate against its displacement, coarse and fine generated meshes,
-//! with and without friction, master and slave swapped, and the
+//! moving plate against its displacement, coarse and fine generated meshes
+//! and the benchmark's own polyMesh, with and without friction, master and
+//! slave swapped, and the
 //! axisymmetric section (what a converged mesh gives before buckling), against Abaqus,
 //! FEBio, Areias and Puso–Laursen; acceptance (benchmarks README): the run
 //! reaches 9 mm and the force stays within 5 % of the Abaqus/FEBio mean
@@ -72,6 +73,21 @@ fn variants() -> Vec<Variant> {
                 ..coarse
             },
         },
+        Variant {
+            label: "benchmark polyMesh, μ = 0",
+            opts: Options {
+                mesh: Mesh::Benchmark,
+                ..coarse
+            },
+        },
+        Variant {
+            label: "benchmark polyMesh, μ = 0.5",
+            opts: Options {
+                mesh: Mesh::Benchmark,
+                friction: 0.5,
+                ..coarse
+            },
+        },
     ]
 }
 
@@ -98,6 +114,7 @@ fn force_plot(
         Style::Cross(RED_C),
         Style::Triangle(BLUE_C),
         Style::Circle(RED_C),
+        Style::Triangle(RED_C),
     ];
     for ((v, r), style) in runs
         .iter()

@@ -40,6 +40,15 @@ const ANDERSON_CONTACT_SETTLED: f64 = 1e-4;
 /// rigid mode crept (415 outer iterations instead of 162 in increment 1).
 const FLOATING_STABILISATION: f64 = 1e-5;
 
+/// An increment's displacement (root mean square over the cells) above
+/// this many times the largest deformable body's extent has run away: the
+/// attempt counts as diverged at once. Such an iteration used to grow by
+/// 10¹⁴ per outer iteration while its relative residual read a steady 1.0
+/// (displacement and correction growing together), until the stress
+/// overflowed and the linear solver met a non-finite right-hand side
+/// (concentric spheres' benchmark polyMesh, 5.9 mm).
+const RUNAWAY_MOTION: f64 = 1e3;
+
 /// Outer iterations in a period-two cycle of the residual after which the
 /// displacement relaxation of the increment halves (beyond the thesis),
 /// down to [`MIN_RELAXATION_FRACTION`] of the configured one. A Picard
@@ -125,8 +134,9 @@ pub enum SolveError {
     /// The linear solver failed.
     #[error("linear solver: {0}")]
     Linear(#[from] LinearSolverError),
-    /// NaN or infinity appeared in the solution.
-    #[error("the solution diverged (non-finite displacement) in outer iteration {0}")]
+    /// NaN or infinity appeared in the solution or the force residual, or
+    /// the increment ran away ([`RUNAWAY_MOTION`]).
+    #[error("the solution diverged (non-finite or runaway displacement) in outer iteration {0}")]
     Diverged(usize),
     /// The contact update failed.
     #[error("{0}")]
@@ -753,6 +763,14 @@ impl SegregatedSolver {
             }
         }
         self.update_fields(bodies)?;
+        // an overflowed stress is a diverged iterate, not a linear-solver fault
+        let finite = |r: &Vector| r.iter().all(|x| x.is_finite());
+        if bodies
+            .iter()
+            .any(|b| !b.rigid && !b.momentum.residual.iter().all(finite))
+        {
+            return Err(SolveError::Diverged(0));
+        }
         if self.springs.iter().any(|s| s.coupled) {
             linear_iterations += self.solve_coupled(bodies)?;
         } else {
@@ -783,7 +801,8 @@ impl SegregatedSolver {
                 norm_total += u.norm_squared();
             }
         }
-        if !norm_delta.is_finite() {
+        let runaway = RUNAWAY_MOTION * self.length_scale * (self.n as f64).sqrt();
+        if !norm_delta.is_finite() || !(norm_incr.sqrt() <= runaway) {
             return Err(SolveError::Diverged(0));
         }
         // reference: the increment's displacement, but not less than

@@ -134,8 +134,9 @@ pub enum SolveError {
     /// The linear solver failed.
     #[error("linear solver: {0}")]
     Linear(#[from] LinearSolverError),
-    /// NaN or infinity appeared in the solution or the force residual, or
-    /// the increment ran away ([`RUNAWAY_MOTION`]).
+    /// NaN or infinity appeared in the solution or the force residual (the
+    /// linear solve's right-hand side), or the increment ran away
+    /// ([`RUNAWAY_MOTION`]).
     #[error("the solution diverged (non-finite or runaway displacement) in outer iteration {0}")]
     Diverged(usize),
     /// The contact update failed.
@@ -763,19 +764,20 @@ impl SegregatedSolver {
             }
         }
         self.update_fields(bodies)?;
-        // an overflowed stress is a diverged iterate, not a linear-solver fault
-        let finite = |r: &Vector| r.iter().all(|x| x.is_finite());
-        if bodies
-            .iter()
-            .any(|b| !b.rigid && !b.momentum.residual.iter().all(finite))
-        {
-            return Err(SolveError::Diverged(0));
-        }
-        if self.springs.iter().any(|s| s.coupled) {
-            linear_iterations += self.solve_coupled(bodies)?;
+        let solved = if self.springs.iter().any(|s| s.coupled) {
+            self.solve_coupled(bodies)
         } else {
-            linear_iterations += self.solve_components(bodies)?;
-        }
+            self.solve_components(bodies)
+        };
+        // the linear solvers check their right-hand side: a non-finite one
+        // is an overflowed stress, a diverged iterate rather than a
+        // linear-solver fault
+        linear_iterations += solved.map_err(|e| match e {
+            SolveError::Linear(LinearSolverError::NonFinite { what }) if what != "matrix" => {
+                SolveError::Diverged(0)
+            }
+            e => e,
+        })?;
         let mut norm_delta = 0.0;
         let mut norm_incr = 0.0;
         let mut norm_total = 0.0;
@@ -801,15 +803,16 @@ impl SegregatedSolver {
                 norm_total += u.norm_squared();
             }
         }
-        let runaway = RUNAWAY_MOTION * self.length_scale * (self.n as f64).sqrt();
-        if !norm_delta.is_finite() || !(norm_incr.sqrt() <= runaway) {
+        // every cell moved by the largest body's extent
+        let body_scale = self.length_scale * (self.n as f64).sqrt();
+        if !norm_delta.is_finite() || !(norm_incr.sqrt() <= RUNAWAY_MOTION * body_scale) {
             return Err(SolveError::Diverged(0));
         }
         // reference: the increment's displacement, but not less than
         // RESIDUAL_TOTAL_FRACTION of the total (an increment in which little
         // changes, e.g. a load held constant, must not be judged on round-off)
         // nor than a length-scale floor (nothing moves at all)
-        let floor = 1e-14 * self.length_scale * (self.n as f64).sqrt();
+        let floor = 1e-14 * body_scale;
         let reference = norm_incr
             .sqrt()
             .max(RESIDUAL_TOTAL_FRACTION * norm_total.sqrt())

@@ -47,10 +47,11 @@ const TOUCHING_GAP: f64 = 1e-6;
 /// ε_n times the mean half-cell compliance δ_n/K of the two contact
 /// surfaces above which a pair of deformable bodies counts as stiffly
 /// coupled: then the linearisation starts from the carried traction
-/// ([`carried_traction_base`]) and the cell springs get a dominant
-/// diagonal ([`CellSpring::component`]), or, with inclined normals
-/// ([`INCLINED_SHARE`]), the springs are solved coupled and β does not
-/// fade within the increment.
+/// ([`carried_traction_base`]) and the displacement components are solved
+/// in turn across the cell springs ([`crate::springs_in_turn`]; formerly
+/// the springs got a dominant diagonal instead, the counts below), or,
+/// with inclined normals ([`INCLINED_SHARE`]), the springs are solved
+/// coupled and β does not fade within the increment.
 /// Measured on concentric cylinders (40 against 30 faces; ε_n δ/K ≈ 0.49
 /// per unit `penalty_scale`): without it the iteration diverges from
 /// `penalty_scale` 6 (ratio 2.9) up — 5.5 still converges, in 783 outer
@@ -65,13 +66,15 @@ const STIFF_PENALTY: f64 = 2.5;
 /// Share of a stiff pair's normal stiffness that couples displacement
 /// components ([`ContactInterface::inclined_share`]) above which the
 /// springs are solved with their whole tensor
-/// ([`crate::coupled_spring_solve`]) instead of the dominant diagonal and
-/// the carried-traction base. Measured: concentric cylinders (normals at
-/// every angle, share 0.64) at ε_n/E = 1000 take 123 outer iterations
+/// ([`crate::coupled_spring_solve`]) instead of the components in turn
+/// and the carried-traction base. Measured (with the dominant diagonal
+/// that preceded the components in turn): concentric cylinders (normals
+/// at every angle, share 0.64) at ε_n/E = 1000 take 123 outer iterations
 /// coupled against 297; a sphere on a block (share 0.13–0.16, normals
 /// near the axis) takes 362 against 475, but at 4× the wall time (the
 /// coupled solve costs about 50 conjugate-gradient iterations per outer
-/// iteration on 3-D meshes), so it stays on the segregated path.
+/// iteration on 3-D meshes), so it stays on the segregated path (84 outer
+/// iterations in turn since).
 const INCLINED_SHARE: f64 = 0.4;
 
 /// Contact updates within one increment after which the tangential
@@ -124,36 +127,16 @@ pub struct CellSpring {
     /// Direction of the spring (the master normal): component c carries
     /// stiffness·n_c² + tangential·(1 − n_c²).
     pub normal: Vector,
-    /// Add the off-diagonal row to the diagonal (stiff pairs, `STIFF_PENALTY`).
-    pub dominant: bool,
+    /// Solve the components in turn, each with the off-diagonal parts at
+    /// the corrections of those before it (stiff pairs whose normals stay
+    /// near the axes, `STIFF_PENALTY`; [`crate::springs_in_turn`]).
+    pub in_turn: bool,
     /// Solve the whole spring tensor, components coupled (stiff pairs with
     /// inclined normals, `INCLINED_SHARE`; [`crate::coupled_spring_solve`]).
     pub coupled: bool,
 }
 
 impl CellSpring {
-    /// Stiffness in the equation of displacement component `c`: the
-    /// diagonal of the spring tensor k_n nn + k_t (I − nn) plus the
-    /// magnitude of its off-diagonal row, |k_n − k_t| |n_c| Σ_{j≠c} |n_j|.
-    ///
-    /// The segregated solve keeps the off-diagonal part lagged (eq. 4.54
-    /// iv–v); with the diagonal alone each component would take up the
-    /// whole normal approach by itself, so that a stiff spring inclined at
-    /// 45° is overcorrected twofold and the face gaps zig-zag. The
-    /// dominant diagonal (stiff pairs only, `STIFF_PENALTY`) makes the
-    /// lagged splitting contract. The residual is the full one, so the
-    /// converged state does not depend on it.
-    #[inline]
-    pub fn component(&self, c: usize) -> f64 {
-        let diagonal = self.tensor_diagonal(c);
-        if !self.dominant {
-            return diagonal;
-        }
-        let nc = self.normal[c].abs();
-        let others = self.normal.abs().sum() - nc;
-        diagonal + (self.stiffness - self.tangential).abs() * nc * others
-    }
-
     /// The diagonal entry (c, c) of the spring tensor k_n n⊗n + k_t (I − n⊗n).
     #[inline]
     pub fn tensor_diagonal(&self, c: usize) -> f64 {
@@ -921,7 +904,7 @@ impl ContactSet {
                         stiffness: w * beta / (compliance_m + inv_eps + compliance_s),
                         tangential: w * beta / (compliance_m + inv_eps_t + compliance_s),
                         normal,
-                        dominant: ci.stiff && !ci.coupled_components,
+                        in_turn: ci.stiff && !ci.coupled_components,
                         coupled: ci.coupled_components,
                     });
                 }

@@ -87,8 +87,7 @@ impl CoupledSpringSolve {
     /// Solves A x = b for the solved components (`component_matrix[c]` is
     /// `Some`); `b[c]` is the residual of component c, `x[c]` receives the
     /// correction. `springs` are those assembled into the matrices (their
-    /// off-diagonal tensor parts are added here, and any dominant diagonal
-    /// taken out). The iteration stops at the relative residual
+    /// off-diagonal tensor parts are added here). The iteration stops at the relative residual
     /// min(`tolerance`, `COUPLED_TOLERANCE`) or after `max_iterations`.
     #[allow(clippy::too_many_arguments)]
     pub fn solve(
@@ -159,10 +158,8 @@ impl CoupledSpringSolve {
             for sp in springs {
                 let (a, bb) = (sp.cells.0 as usize, sp.cells.1 as usize);
                 for &(c, _) in solved {
-                    // the matrix holds `component(c)`; the tensor's diagonal
-                    // is `tensor_diagonal(c)`
-                    let mut s =
-                        (sp.tensor_diagonal(c) - sp.component(c)) * (self.p[c][a] - self.p[c][bb]);
+                    // the matrix holds the tensor's diagonal
+                    let mut s = 0.0;
                     for &(d, _) in solved.iter().filter(|&&(d, _)| d != c) {
                         s += sp.tensor_off_diagonal(c, d) * (self.p[d][a] - self.p[d][bb]);
                     }
@@ -231,7 +228,7 @@ mod tests {
             stiffness: 50.0,
             tangential: 0.0,
             normal: Vector::new(1.0, 1.0, 0.0).normalize(),
-            dominant: false,
+            in_turn: false,
             coupled: true,
         };
         // one matrix per component: chain Laplacian + the spring's diagonal
@@ -256,7 +253,7 @@ mod tests {
                     t.push(((o + i) as u32, (o + i) as u32, d));
                 }
             }
-            let k = spring.component(comp);
+            let k = spring.tensor_diagonal(comp);
             let (a, b) = spring.cells;
             t.push((a, a, k));
             t.push((b, b, k));

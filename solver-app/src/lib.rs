@@ -24,3 +24,4 @@ pub mod profile;
 pub mod results;
 pub mod run;
 pub mod segregated;
+pub mod springs_in_turn;

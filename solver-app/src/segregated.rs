@@ -8,6 +8,7 @@ use crate::coupled_spring_solve::CoupledSpringSolve;
 use crate::model::Body;
 use crate::predictor::{LinearPredictor, PathChange};
 use crate::profile::{Phase, PhaseTimes};
+use crate::springs_in_turn;
 use fv_discretise::{
     CsrMatrix, FaceSlots, LinearSolver, LinearSolverError, MomentumParams, SolveInfo,
 };
@@ -569,7 +570,7 @@ impl SegregatedSolver {
         for sp in &self.springs {
             let (a, b) = (sp.cells.0 as usize, sp.cells.1 as usize);
             for c in 0..3 {
-                let k = sp.component(c);
+                let k = sp.tensor_diagonal(c);
                 self.diag_work[c][a] += k;
                 self.diag_work[c][b] += k;
             }
@@ -621,7 +622,7 @@ impl SegregatedSolver {
         for (&c, mi) in solved.iter().zip(0..) {
             let v = self.matrices[mi].values_mut();
             for (sp, slots) in self.springs.iter().zip(self.spring_slots.chunks_exact(2)) {
-                let k = sp.component(c);
+                let k = sp.tensor_diagonal(c);
                 v[slots[0] as usize] -= k;
                 v[slots[1] as usize] -= k;
             }
@@ -766,6 +767,8 @@ impl SegregatedSolver {
         self.update_fields(bodies)?;
         let solved = if self.springs.iter().any(|s| s.coupled) {
             self.solve_coupled(bodies)
+        } else if self.springs.iter().any(|s| s.in_turn) {
+            self.solve_components_in_turn(bodies)
         } else {
             self.solve_components(bodies)
         };
@@ -903,6 +906,31 @@ impl SegregatedSolver {
             }
         }
         Ok(linear_iterations)
+    }
+
+    /// The correction of every solved component, one after another across
+    /// the stiff contact springs ([`springs_in_turn::solve_in_turn`]);
+    /// returns the linear iterations.
+    fn solve_components_in_turn(&mut self, bodies: &[Body]) -> Result<usize, SolveError> {
+        for c in 0..3 {
+            gather_residual(bodies, c, &mut self.rhs_each[c]);
+        }
+        let start = Instant::now();
+        let iterations = springs_in_turn::solve_in_turn(
+            &self.matrices,
+            &self.component_matrix,
+            &mut self.solvers,
+            &self.springs,
+            &mut self.rhs_each,
+            &mut self.x_each,
+        )?;
+        self.times.lap(Phase::LinearSolve, start);
+        for (c, x) in self.x_each.iter().enumerate() {
+            for (d, &x) in self.delta.iter_mut().zip(x) {
+                d[c] = x;
+            }
+        }
+        Ok(iterations)
     }
 
     /// The correction of all components at once with the contact springs'

@@ -163,6 +163,16 @@ mod tests {
             }
         }
 
+        /// [`solve_in_turn`] of x and y for the residual `r`.
+        fn solve_in_turn(&mut self, r: &mut [Vec<f64>; 3]) -> [Vec<f64>; 3] {
+            // a guess that must not matter
+            let mut x: [Vec<f64>; 3] = [vec![1.0; N], vec![1.0; N], vec![1.0; N]];
+            let map = [Some(0), Some(1), None];
+            let springs = [self.spring];
+            solve_in_turn(&self.matrices, &map, &mut self.solvers, &springs, r, &mut x).unwrap();
+            x
+        }
+
         /// Outer iterations u ← u + δ (δ from the components' matrices, the
         /// residual with the whole spring tensor: the solver's defect
         /// correction), loaded by `load` (component, cell, force), until the
@@ -186,26 +196,17 @@ mod tests {
                 for &(comp, cell, value) in load {
                     r[comp][cell] += value;
                 }
-                let mut x: [Vec<f64>; 3] = [vec![0.0; N], vec![0.0; N], vec![0.0; N]];
-                if self.spring.in_turn {
-                    let springs = [self.spring];
-                    let map = [Some(0), Some(1), None];
-                    solve_in_turn(
-                        &self.matrices,
-                        &map,
-                        &mut self.solvers,
-                        &springs,
-                        &mut r,
-                        &mut x,
-                    )
-                    .unwrap();
+                let x = if self.spring.in_turn {
+                    self.solve_in_turn(&mut r)
                 } else {
+                    let mut x: [Vec<f64>; 3] = [vec![0.0; N], vec![0.0; N], vec![0.0; N]];
                     for comp in 0..2 {
                         self.solvers[comp]
                             .solve(&self.matrices[comp], &r[comp], &mut x[comp])
                             .unwrap();
                     }
-                }
+                    x
+                };
                 let (mut dx, mut un) = (0.0, 0.0);
                 for comp in 0..2 {
                     for i in 0..N {
@@ -266,17 +267,7 @@ mod tests {
                 x
             })
             .collect();
-        let mut x: [Vec<f64>; 3] = [vec![1.0; N], vec![1.0; N], vec![1.0; N]];
-        let map = [Some(0), Some(1), None];
-        solve_in_turn(
-            &ch.matrices,
-            &map,
-            &mut ch.solvers,
-            &[ch.spring],
-            &mut r,
-            &mut x,
-        )
-        .unwrap();
+        let x = ch.solve_in_turn(&mut r);
         for c in 0..2 {
             for i in 0..N {
                 assert!((x[c][i] - expect[c][i]).abs() < 1e-12, "x[{c}][{i}]");
@@ -294,17 +285,7 @@ mod tests {
         let mut ch = Chains::new(50.0, Vector::new(0.9, 1.0, 0.0), Splitting::InTurn);
         let mut r: [Vec<f64>; 3] = [vec![0.0; N], vec![0.0; N], vec![0.0; N]];
         r[1][N - 1] = 1.0;
-        let mut x: [Vec<f64>; 3] = [vec![0.0; N], vec![0.0; N], vec![0.0; N]];
-        let map = [Some(0), Some(1), None];
-        solve_in_turn(
-            &ch.matrices,
-            &map,
-            &mut ch.solvers,
-            &[ch.spring],
-            &mut r,
-            &mut x,
-        )
-        .unwrap();
+        let x = ch.solve_in_turn(&mut r);
         let (a, b) = (M - 1, N - 1);
         assert!(x[1][b] > 0.0);
         // x's equation at the spring's cells: K_x x = −k_xy (y_a − y_b) at a

@@ -12,6 +12,7 @@ use std::path::Path;
 
 use mshio::ElementType;
 
+use crate::extrude_plane::{extrude_plane, PlaneElements};
 use crate::{CellShape, CellType, CellZone, MeshError, PolyMesh, Vector};
 
 /// Reads a Gmsh MSH 4.1 file (ascii or binary) into a [`PolyMesh`].
@@ -418,9 +419,15 @@ fn convert(
     let unsupported = |what: String| MeshError::Unsupported(format!("{}: {what}", path.display()));
 
     // physical tags of surface and volume entities
+    let mut curve_phys: HashMap<i32, Vec<i32>> = HashMap::new();
     let mut surface_phys: HashMap<i32, Vec<i32>> = HashMap::new();
     let mut volume_phys: HashMap<i32, Vec<i32>> = HashMap::new();
     if let Some(ent) = &msh.data.entities {
+        for c in &ent.curves {
+            if !c.physical_tags.is_empty() {
+                curve_phys.insert(c.tag, c.physical_tags.clone());
+            }
+        }
         for s in &ent.surfaces {
             if !s.physical_tags.is_empty() {
                 surface_phys.insert(s.tag, s.physical_tags.clone());
@@ -499,14 +506,35 @@ fn convert(
             ))
         })
     };
+    // the 2-D elements, kept in case the mesh has no volume elements
+    let mut plane = PlaneElements::default();
     for block in &elements.element_blocks {
         let t = block.element_type;
         match t {
-            ElementType::Pnt | ElementType::Lin2 => continue,
-            ElementType::Tri3 | ElementType::Qua4 => {
-                let Some(phys) = surface_phys.get(&block.entity_tag) else {
+            ElementType::Pnt => continue,
+            ElementType::Lin2 => {
+                let Some(phys) = curve_phys.get(&block.entity_tag) else {
                     continue;
                 };
+                for e in &block.elements {
+                    let [a, b] = e.nodes[..] else {
+                        return Err(parse_err(format!(
+                            "line element {} has {} nodes, not 2",
+                            e.element_tag,
+                            e.nodes.len()
+                        )));
+                    };
+                    let segment = [lookup(a, e.element_tag)?, lookup(b, e.element_tag)?];
+                    for &p in phys {
+                        let name = names
+                            .get(&(1, p))
+                            .cloned()
+                            .unwrap_or_else(|| format!("patch{p}"));
+                        plane.edges.entry(name).or_default().push(segment);
+                    }
+                }
+            }
+            ElementType::Tri3 | ElementType::Qua4 => {
                 let mut faces = Vec::with_capacity(block.elements.len());
                 for e in &block.elements {
                     let f = e
@@ -514,10 +542,21 @@ fn convert(
                         .iter()
                         .map(|&n| lookup(n, e.element_tag))
                         .collect::<Result<Vec<u32>, _>>()?;
+                    let expected = if t == ElementType::Tri3 { 3 } else { 4 };
+                    if f.len() != expected {
+                        return Err(parse_err(format!(
+                            "element {} has {} nodes, {t:?} needs {expected}",
+                            e.element_tag,
+                            f.len()
+                        )));
+                    }
+                    plane.faces.push((f.clone(), block.entity_tag));
                     faces.push(f);
                 }
-                for &p in phys {
-                    groups.entry(p).or_default().extend(faces.iter().cloned());
+                if let Some(phys) = surface_phys.get(&block.entity_tag) {
+                    for &p in phys {
+                        groups.entry(p).or_default().extend(faces.iter().cloned());
+                    }
                 }
             }
             _ => {
@@ -549,12 +588,15 @@ fn convert(
             }
         }
     }
+    if cells.is_empty() && !plane.faces.is_empty() {
+        return plane_mesh(&coords, &plane, &surface_phys, names, path);
+    }
     if cells.is_empty() {
         return Err(unsupported(
-            "the mesh has no volume elements (tetrahedra, hexahedra, prisms, pyramids): 2D meshes are not \
-             supported; mesh the volume (gmsh -3), for a plane problem extrude the surface one cell thick \
-             (Extrude {..} { Surface{..}; Layers{1}; Recombine; }). If the .geo defines physical \
-             groups, Gmsh saves only the elements in them: add a Physical Volume or set Mesh.SaveAll = 1"
+            "the mesh has no volume elements (tetrahedra, hexahedra, prisms, pyramids) and no 2D \
+             elements (triangles, quadrangles) to extrude: mesh the volume (gmsh -3) or the plane \
+             (gmsh -2). If the .geo defines physical groups, Gmsh saves only the elements in them: add \
+             a Physical Volume (or Physical Surface) or set Mesh.SaveAll = 1"
                 .into(),
         ));
     }
@@ -602,27 +644,77 @@ fn convert(
         }
     }
 
-    // physical volumes → cell zones
+    assemble(
+        points,
+        cells,
+        &boundary_groups,
+        &cell_volume_entity,
+        &volume_phys,
+        (3, "volume"),
+        names,
+        path,
+    )
+}
+
+/// The mesh of a file without volume elements: its 2-D elements extruded
+/// one cell thick ([`extrude_plane`]); physical surfaces become cell zones.
+fn plane_mesh(
+    coords: &[Vector],
+    plane: &PlaneElements,
+    surface_phys: &HashMap<i32, Vec<i32>>,
+    names: &PhysicalNames,
+    path: &Path,
+) -> Result<PolyMesh, MeshError> {
+    let e = extrude_plane(coords, plane)
+        .map_err(|m| MeshError::Unsupported(format!("{}: {m}", path.display())))?;
+    assemble(
+        e.points,
+        e.cells,
+        &e.boundary_groups,
+        &e.cell_entity,
+        surface_phys,
+        (2, "surface"),
+        names,
+        path,
+    )
+}
+
+/// The [`PolyMesh`] of `cells` with its patches; the cells of each physical
+/// group of dimension `zone_kind.0` (through their entity `cell_entity`
+/// and `entity_phys`) become a [`CellZone`] named after the group, or
+/// `<zone_kind.1><tag>`.
+#[allow(clippy::too_many_arguments)]
+fn assemble(
+    points: Vec<Vector>,
+    cells: Vec<CellShape>,
+    boundary_groups: &[(String, Vec<Vec<u32>>)],
+    cell_entity: &[i32],
+    entity_phys: &HashMap<i32, Vec<i32>>,
+    zone_kind: (i32, &str),
+    names: &PhysicalNames,
+    path: &Path,
+) -> Result<PolyMesh, MeshError> {
     let mut zones: BTreeMap<i32, Vec<u32>> = BTreeMap::new();
-    for (ci, ent) in cell_volume_entity.iter().enumerate() {
-        if let Some(phys) = volume_phys.get(ent) {
-            for &p in phys {
-                zones.entry(p).or_default().push(ci as u32);
-            }
+    for (ci, ent) in cell_entity.iter().enumerate() {
+        for &p in entity_phys.get(ent).into_iter().flatten() {
+            zones.entry(p).or_default().push(ci as u32);
         }
     }
-
-    let mut mesh = PolyMesh::from_cells(points, cells, &boundary_groups).map_err(|e| match e {
-        MeshError::Invalid(m) => parse_err(format!("invalid mesh: {m}")),
+    let mut mesh = PolyMesh::from_cells(points, cells, boundary_groups).map_err(|e| match e {
+        MeshError::Invalid(m) => MeshError::Parse {
+            path: path.to_path_buf(),
+            line: None,
+            message: format!("invalid mesh: {m}"),
+        },
         other => other,
     })?;
     mesh.cell_zones = zones
         .into_iter()
         .map(|(tag, cells)| CellZone {
             name: names
-                .get(&(3, tag))
+                .get(&(zone_kind.0, tag))
                 .cloned()
-                .unwrap_or_else(|| format!("volume{tag}")),
+                .unwrap_or_else(|| format!("{}{tag}", zone_kind.1)),
             cells,
         })
         .collect();
@@ -633,6 +725,7 @@ fn convert(
 mod tests {
     use super::*;
     use crate::MeshGeometry;
+    use crate::{FRONT_AND_BACK, PLANE_THICKNESS};
     use std::path::PathBuf;
 
     fn read(text: &str) -> Result<PolyMesh, MeshError> {
@@ -1001,6 +1094,52 @@ $EndElements
         let e = read(&bad).expect_err("higher order");
         assert!(matches!(e, MeshError::Unsupported(_)), "{e}");
         assert!(e.to_string().contains("ElementOrder = 1"), "{e}");
+    }
+
+    /// A plane mesh, 2 × 1 in z = 0: two triangles (the second written
+    /// clockwise) and a quadrangle; physical curves "left" (x = 0),
+    /// "bottom" (y = 0) and "right" (x = 2), the top edges in no group,
+    /// physical surface "plate".
+    const PLANE: &str = include_str!("../tests/data/plate_2d.msh");
+
+    #[test]
+    fn a_plane_mesh_is_extruded_one_cell_thick() {
+        let m = read(PLANE).expect("reads");
+        assert_eq!(m.n_cells, 3);
+        assert_eq!(m.n_points(), 12);
+        // the triangle–triangle and triangle–quadrangle edges
+        assert_eq!(m.n_internal_faces(), 2);
+        let mut sizes = patch_sizes(&m);
+        sizes.sort();
+        assert_eq!(
+            sizes,
+            vec![
+                ("bottom".into(), 2),
+                ("defaultFaces".into(), 2),
+                (FRONT_AND_BACK.into(), 6),
+                ("left".into(), 1),
+                ("right".into(), 1),
+            ]
+        );
+        // area 2 × thickness 1, every cell right side up
+        assert!((volume(&m) - 2.0 * PLANE_THICKNESS).abs() < 1e-12);
+        let g = MeshGeometry::new(&m).expect("geometry");
+        assert!(g.cell_volumes.iter().all(|&v| v > 0.0));
+        let shapes = m.cell_shapes.as_ref().expect("shapes");
+        let kinds: Vec<CellType> = shapes.iter().map(|s| s.kind).collect();
+        assert_eq!(kinds, [CellType::Wedge, CellType::Wedge, CellType::Hexa]);
+        assert_eq!(m.cell_zones.len(), 1);
+        assert_eq!(m.cell_zones[0].name, "plate");
+        assert_eq!(m.cell_zones[0].cells, [0, 1, 2]);
+    }
+
+    #[test]
+    fn a_plane_mesh_off_the_xy_plane_is_rejected() {
+        // node 6 lifted to z = 0.5
+        let bad = PLANE.replace("2 1 0\n$EndNodes", "2 1 0.5\n$EndNodes");
+        let e = read(&bad).expect_err("not plane");
+        assert!(matches!(e, MeshError::Unsupported(_)), "{e}");
+        assert!(e.to_string().contains("one plane z = const"), "{e}");
     }
 
     #[test]

@@ -11,6 +11,7 @@
 mod cell_shapes;
 mod cell_to_point;
 mod error;
+mod extrude_plane;
 mod geometry;
 mod gmsh;
 mod openfoam;
@@ -25,6 +26,7 @@ pub mod spherical_shell;
 pub use cell_shapes::{CellShape, CellType};
 pub use cell_to_point::{CellToPoint, PointFit, EIGEN_TOLERANCE, MAX_WEIGHT_SUM};
 pub use error::MeshError;
+pub use extrude_plane::{FRONT_AND_BACK, PLANE_THICKNESS};
 pub use geometry::MeshGeometry;
 pub use gmsh::{read_gmsh, read_gmsh_bytes};
 pub use openfoam::{face_connected_regions, read_polymesh, select_body};

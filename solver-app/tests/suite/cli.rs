@@ -342,3 +342,65 @@ fn unconverged_sub_steps_are_reported_at_their_own_time() {
     assert_eq!(rows.len(), 1, "{err}");
     assert!((rows[0].0 - 0.5 / 16.0).abs() < 1e-12, "{rows:?}");
 }
+
+/// A plane Gmsh mesh (`gmsh -2`): a 2 × 1 plate of two triangles (one
+/// written clockwise) and a quadrangle, physical curves "left", "bottom"
+/// and "right", physical surface "plate".
+const PLANE_MSH: &str = include_str!("../../../fv-mesh/tests/data/plate_2d.msh");
+
+/// A plane mesh runs as a plane-strain problem once its `frontAndBack`
+/// patch is `empty`: uniaxial stress σ on the plate, symmetric on the left
+/// and bottom edges, gives ε_xx = σ(1 − ν²)/E, ε_yy = −σν(1 + ν)/E in every
+/// cell (the patch test, exact for the least-squares gradient).
+#[test]
+fn a_plane_gmsh_mesh_runs_as_plane_strain() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "plate.msh", PLANE_MSH.as_bytes());
+    let case = r#"title = "plate"
+[time]
+end = 1.0
+steps = 1
+[solver]
+tolerance = 1e-9
+[[body]]
+name = "plate"
+mesh = { file = "plate.msh" }
+material = { model = "linear-elastic", E = 200.0, nu = 0.3 }
+[body.boundary.left]
+type = "symmetry"
+[body.boundary.bottom]
+type = "symmetry"
+[body.boundary.right]
+type = "traction"
+value = [1.0, 0, 0]
+[body.boundary.frontAndBack]
+type = "empty"
+"#;
+    let (code, outdir, err) = run_quietly(dir.path(), case.as_bytes());
+    assert_eq!(code, 0, "{err}");
+    let file = hdf5::File::open(outdir.join("plate").join("plate.h5")).unwrap();
+    let u = file
+        .dataset("time/1/plate/displacement")
+        .unwrap()
+        .read_2d::<f64>()
+        .unwrap();
+    let (e, nu) = (200.0, 0.3);
+    let (exx, eyy) = ((1.0 - nu * nu) / e, -nu * (1.0 + nu) / e);
+    // cell centres: the two triangles' centroids, then the quadrangle's
+    for (c, (x, y)) in [(2.0 / 3.0, 1.0 / 3.0), (1.0 / 3.0, 2.0 / 3.0), (1.5, 0.5)]
+        .into_iter()
+        .enumerate()
+    {
+        assert!(
+            (u[[c, 0]] - exx * x).abs() < 1e-6 * exx,
+            "cell {c}: u_x {}",
+            u[[c, 0]]
+        );
+        assert!(
+            (u[[c, 1]] - eyy * y).abs() < 1e-6 * exx,
+            "cell {c}: u_y {}",
+            u[[c, 1]]
+        );
+        assert_eq!(u[[c, 2]], 0.0);
+    }
+}

@@ -862,7 +862,8 @@ pub fn face_connected_regions(mesh: &PolyMesh) -> Vec<Vec<u32>> {
 
 /// Picks one body of a mesh that holds several.
 ///
-/// With `Some(name)`: if the mesh has cellZones, the zone `name`; otherwise
+/// With `Some(name)`: if the mesh has cellZones (a Gmsh mesh: its physical
+/// volumes, or surfaces of a plane mesh), the zone `name`; otherwise
 /// the face-connected region `name`, the regions being called `region0`,
 /// `region1`, … in the order of their lowest cell index. An unknown name is
 /// an error listing the valid ones. With `None`: the whole mesh.
@@ -874,7 +875,7 @@ pub fn select_body(mesh: &PolyMesh, zone: Option<&str>) -> Result<PolyMesh, Mesh
         let Some(z) = mesh.cell_zones.iter().find(|z| z.name == name) else {
             let names: Vec<&str> = mesh.cell_zones.iter().map(|z| z.name.as_str()).collect();
             return Err(MeshError::invalid(format!(
-                "no cellZone named '{name}'; the mesh's cellZones are: {}",
+                "no zone named '{name}'; the mesh's zones (OpenFOAM cellZones, Gmsh physical groups) are: {}",
                 names.join(", ")
             )));
         };

@@ -29,13 +29,19 @@ pub fn load_mesh(
         );
         err
     };
+    let select_body = |whole: &PolyMesh, zone: Option<&str>| {
+        fv_mesh::select_body(whole, zone)
+            .map_err(|e| source.error(&format!("{key}.zone"), e.to_string()))
+    };
     let mut mesh = match spec {
         MeshSpec::Gmsh {
             file,
+            zone,
             scale,
             translate,
         } => {
-            let mut m = fv_mesh::read_gmsh(file).map_err(|e| from_file(file, e))?;
+            let whole = fv_mesh::read_gmsh(file).map_err(|e| from_file(file, e))?;
+            let mut m = select_body(&whole, zone.as_deref())?;
             m.transform_points(*scale, Vector::from(*translate));
             m
         }
@@ -46,8 +52,7 @@ pub fn load_mesh(
             translate,
         } => {
             let whole = fv_mesh::read_polymesh(dir).map_err(|e| from_file(dir, e))?;
-            let mut m = fv_mesh::select_body(&whole, zone.as_deref())
-                .map_err(|e| source.error(&format!("{key}.zone"), e.to_string()))?;
+            let mut m = select_body(&whole, zone.as_deref())?;
             m.transform_points(*scale, Vector::from(*translate));
             m
         }

@@ -7,10 +7,15 @@ use super::reader::{fmt_num, list, Node, Res, Table};
 /// Where a body's mesh comes from.
 #[derive(Debug, Clone, PartialEq)]
 pub enum MeshSpec {
-    /// `{ file = "x.msh", scale = 1, translate = [0,0,0] }`: Gmsh MSH 4.1.
+    /// `{ file = "x.msh", zone = "name", scale = 1, translate = [0,0,0] }`:
+    /// Gmsh MSH 4.1.
     Gmsh {
         /// Resolved against the case file's directory.
         file: PathBuf,
+        /// Only this physical volume (physical surface of a plane mesh), or
+        /// face-connected region `regionN`, forms the body (all cells when
+        /// absent): several bodies meshed in one file.
+        zone: Option<String>,
         /// Coordinates are multiplied by this (> 0), then translated.
         scale: f64,
         /// Added after scaling.
@@ -125,9 +130,10 @@ pub(crate) fn mesh(node: &Node<'_>, case_dir: &Path) -> Res<MeshSpec> {
     let given: Vec<&str> = forms.iter().copied().filter(|k| t.has(k)).collect();
     match given.as_slice() {
         ["file"] => {
-            t.deny_unknown(&["file", "scale", "translate"])?;
+            t.deny_unknown(&["file", "zone", "scale", "translate"])?;
             Ok(MeshSpec::Gmsh {
                 file: case_dir.join(t.need("file", |n| n.nonempty_str().map(PathBuf::from))?),
+                zone: t.maybe("zone", |n| n.nonempty_str().map(str::to_owned))?,
                 scale: t.opt("scale", 1.0, |n| n.positive())?,
                 translate: t.opt("translate", [0.0; 3], |n| n.vec3())?,
             })

@@ -278,6 +278,7 @@ fn mesh_forms() {
         m(r#"mesh = { file = "cyl.msh" }"#),
         MeshSpec::Gmsh {
             file: PathBuf::from("cases/cyl.msh"),
+            zone: None,
             scale: 1.0,
             translate: [0.0; 3]
         }
@@ -286,6 +287,7 @@ fn mesh_forms() {
         m(r#"mesh = { file = "/abs/cyl.msh", scale = 1e-3, translate = [1, 2, 3.5] }"#),
         MeshSpec::Gmsh {
             file: PathBuf::from("/abs/cyl.msh"),
+            zone: None,
             scale: 1e-3,
             translate: [1.0, 2.0, 3.5]
         }

@@ -404,3 +404,41 @@ type = "empty"
         assert_eq!(u[[c, 2]], 0.0);
     }
 }
+
+/// `zone` picks one body of a Gmsh file by its physical group; an unknown
+/// name is refused with the valid ones.
+#[test]
+fn a_gmsh_zone_selects_a_body_and_an_unknown_one_is_named() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "plate.msh", PLANE_MSH.as_bytes());
+    let case = |zone: &str| {
+        format!(
+            r#"title = "plate"
+[time]
+end = 1.0
+steps = 1
+[[body]]
+name = "plate"
+mesh = {{ file = "plate.msh", zone = "{zone}" }}
+material = {{ model = "linear-elastic", E = 200.0, nu = 0.3 }}
+[body.boundary.left]
+type = "displacement"
+value = [0, 0, 0]
+[body.boundary.frontAndBack]
+type = "empty"
+"#
+        )
+    };
+    let (code, _, err) = fvc(&[
+        "check",
+        write(dir.path(), "a.toml", case("plate").as_bytes())
+            .to_str()
+            .unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    expect_input_error(
+        dir.path(),
+        case("plat").as_bytes(),
+        &["body[0].mesh.zone", "no zone named 'plat'", "plate"],
+    );
+}

@@ -270,7 +270,9 @@ fn case() -> impl Strategy<Value = Case> {
         })
 }
 
-fn run(c: &Case) -> Result<usize, TestCaseError> {
+/// The detection parameters, the master patch, the slave's placement and
+/// the slave patch of a case before its motions.
+fn set_up(c: &Case) -> (DetectParams, Patch, Placement, Patch) {
     let p = DetectParams {
         mean_cell_height: Some(c.h),
         ..Default::default()
@@ -278,7 +280,12 @@ fn run(c: &Case) -> Result<usize, TestCaseError> {
     let master = Patch::new(c.master_n, c.master_tri, true, &c.master);
     let mut place = c.slave;
     place.shift.z = c.gap;
-    let mut slave = Patch::new(c.slave_n, c.slave_tri, false, &place);
+    let slave = Patch::new(c.slave_n, c.slave_tri, false, &place);
+    (p, master, place, slave)
+}
+
+fn run(c: &Case) -> Result<usize, TestCaseError> {
+    let (p, master, mut place, mut slave) = set_up(c);
     let (ms, ss) = (&master.surface, &slave.surface);
     let reference = agree_cold(ms, ss, p)?;
     let mut true_pairs = check_no_true_pair_missed(ms, ss, c.h, &reference)?;
@@ -468,14 +475,7 @@ fn warm_advancing_front_misses_an_unlinked_face_pair_reuse_does_not() {
         gap: -0.16010549675881214,
         motions: vec![],
     };
-    let p = DetectParams {
-        mean_cell_height: Some(c.h),
-        ..Default::default()
-    };
-    let master = Patch::new(c.master_n, c.master_tri, true, &c.master);
-    let mut place = c.slave;
-    place.shift.z = c.gap;
-    let mut slave = Patch::new(c.slave_n, c.slave_tri, false, &place);
+    let (p, master, mut place, mut slave) = set_up(&c);
     let mut af = AdvancingFront::new(p);
     let mut reuse = PairReuse::new(DetectionMethod::AdvancingFront, p, DEFAULT_SKIN).unwrap();
     let (mut warm, mut reused, mut brute) = (

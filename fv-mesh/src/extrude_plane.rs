@@ -79,12 +79,11 @@ pub fn extrude_plane(coords: &[Vector], plane: &PlaneElements) -> Result<Extrude
             lo.z, hi.z
         ));
     }
-    let mut points = bottom.clone();
-    points.extend(
-        bottom
-            .iter()
-            .map(|p| Vector::new(p.x, p.y, z0 + PLANE_THICKNESS)),
-    );
+    let mut points = bottom;
+    points.extend_from_within(..);
+    for p in &mut points[n as usize..] {
+        p.z = z0 + PLANE_THICKNESS;
+    }
 
     let mut cells = Vec::with_capacity(plane.faces.len());
     let mut cell_entity = Vec::with_capacity(plane.faces.len());

@@ -497,8 +497,6 @@ fn convert(
     // volume elements → cells (file node indices for now)
     let mut cells: Vec<CellShape> = Vec::new();
     let mut cell_volume_entity: Vec<i32> = Vec::new();
-    // physical surface tag → faces (file node indices)
-    let mut groups: BTreeMap<i32, Vec<Vec<u32>>> = BTreeMap::new();
     let lookup = |t: u64, etag: u64| -> Result<u32, MeshError> {
         index_of.get(&t).copied().ok_or_else(|| {
             parse_err(format!(
@@ -506,7 +504,8 @@ fn convert(
             ))
         })
     };
-    // the 2-D elements, kept in case the mesh has no volume elements
+    // the 2-D elements: boundary faces of a volume mesh, or the cells of a
+    // plane mesh to extrude
     let mut plane = PlaneElements::default();
     for block in &elements.element_blocks {
         let t = block.element_type;
@@ -516,26 +515,27 @@ fn convert(
                 let Some(phys) = curve_phys.get(&block.entity_tag) else {
                     continue;
                 };
-                for e in &block.elements {
-                    let [a, b] = e.nodes[..] else {
-                        return Err(parse_err(format!(
+                let segments = block
+                    .elements
+                    .iter()
+                    .map(|e| match e.nodes[..] {
+                        [a, b] => Ok([lookup(a, e.element_tag)?, lookup(b, e.element_tag)?]),
+                        _ => Err(parse_err(format!(
                             "line element {} has {} nodes, not 2",
                             e.element_tag,
                             e.nodes.len()
-                        )));
-                    };
-                    let segment = [lookup(a, e.element_tag)?, lookup(b, e.element_tag)?];
-                    for &p in phys {
-                        let name = names
-                            .get(&(1, p))
-                            .cloned()
-                            .unwrap_or_else(|| format!("patch{p}"));
-                        plane.edges.entry(name).or_default().push(segment);
-                    }
+                        ))),
+                    })
+                    .collect::<Result<Vec<[u32; 2]>, _>>()?;
+                for &p in phys {
+                    let name = names
+                        .get(&(1, p))
+                        .cloned()
+                        .unwrap_or_else(|| format!("patch{p}"));
+                    plane.edges.entry(name).or_default().extend(&segments);
                 }
             }
             ElementType::Tri3 | ElementType::Qua4 => {
-                let mut faces = Vec::with_capacity(block.elements.len());
                 for e in &block.elements {
                     let f = e
                         .nodes
@@ -550,13 +550,7 @@ fn convert(
                             f.len()
                         )));
                     }
-                    plane.faces.push((f.clone(), block.entity_tag));
-                    faces.push(f);
-                }
-                if let Some(phys) = surface_phys.get(&block.entity_tag) {
-                    for &p in phys {
-                        groups.entry(p).or_default().extend(faces.iter().cloned());
-                    }
+                    plane.faces.push((f, block.entity_tag));
                 }
             }
             _ => {
@@ -621,6 +615,13 @@ fn convert(
     for c in &mut cells {
         for n in &mut c.nodes {
             *n = new_index[*n as usize];
+        }
+    }
+    // physical surface tag → faces (file node indices)
+    let mut groups: BTreeMap<i32, Vec<&[u32]>> = BTreeMap::new();
+    for (f, entity) in &plane.faces {
+        for &p in surface_phys.get(entity).into_iter().flatten() {
+            groups.entry(p).or_default().push(f);
         }
     }
     let mut boundary_groups: Vec<(String, Vec<Vec<u32>>)> = Vec::new();

@@ -3,7 +3,7 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::time::Instant;
 
-use crate::case::{Case, InputError, OnNonConvergence};
+use crate::case::{Case, Coupling, InputError, OnNonConvergence};
 use crate::contact_coupling::ContactSet;
 use crate::field_output::FieldOutput;
 use crate::mesh_loading::load_mesh;
@@ -170,8 +170,11 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
     }
     if let Err(e) = solver.assemble_and_factorise(&bodies, &case.solver.linear) {
         let msg = e.to_string();
-        if matches!(e, crate::segregated::SolveError::Unconstrained { .. }) {
-            return Err(RunError::Input(InputError::new(&case.source.path, msg)));
+        if let crate::segregated::SolveError::Unconstrained { body, .. } = &e {
+            return Err(RunError::Input(InputError::new(
+                &case.source.path,
+                msg + &explicit_contact_hint(case, body),
+            )));
         }
         failure = Some(msg);
     }
@@ -437,4 +440,30 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
         summary,
         directory: dir,
     })
+}
+
+/// For a body that nothing but contact holds: the explicitly coupled
+/// contacts it is in, and the remedy. Explicit coupling applies the contact
+/// traction as a load (eq. 4.13), so the body's own matrix stays singular;
+/// implicit coupling puts the penalty springs into the matrix (eq. 4.52)
+/// and can hold it.
+fn explicit_contact_hint(case: &Case, body: &str) -> String {
+    let pairs: Vec<String> = case
+        .contacts
+        .iter()
+        .filter(|c| c.coupling == Coupling::Explicit && (c.master.0 == body || c.slave.0 == body))
+        .map(|c| {
+            format!(
+                "{}/{} – {}/{}",
+                c.master.0, c.master.1, c.slave.0, c.slave.1
+            )
+        })
+        .collect();
+    if pairs.is_empty() {
+        return String::new();
+    }
+    format!(
+        "; held by contact only, it needs coupling = \"implicit\" on [[contact]] {} (explicit coupling applies the contact traction as a load and cannot hold a body)",
+        pairs.join(", ")
+    )
 }

@@ -244,6 +244,70 @@ fn unconstrained_body_is_an_input_error() {
     expect_input_error(dir.path(), free.as_bytes(), &["not held"]);
 }
 
+/// A block resting on a fixed base, loaded by a pressure on its top and
+/// held in y by the contact alone (plane strain).
+const RESTING: &str = r#"title = "resting"
+[time]
+end = 1.0
+steps = 2
+[solver]
+tolerance = 1e-6
+[[body]]
+name = "base"
+mesh = { generator = "box", min = [0, 0, 0], max = [1, 0.5, 0.1], cells = [10, 5, 1] }
+material = { model = "linear-elastic", E = 200.0, nu = 0.3 }
+[body.boundary.ymin]
+type = "displacement"
+value = [0, 0, 0]
+[body.boundary.zmin]
+type = "empty"
+[body.boundary.zmax]
+type = "empty"
+[[body]]
+name = "top"
+mesh = { generator = "box", min = [0.25, 0.5, 0], max = [0.75, 0.8, 0.1], cells = [6, 4, 1] }
+material = { model = "linear-elastic", E = 200.0, nu = 0.3 }
+[body.boundary.ymax]
+type = "pressure"
+value = { table = [[0.0, 0.0], [1.0, 0.2]] }
+[body.boundary.xmin]
+type = "symmetry"
+[body.boundary.zmin]
+type = "empty"
+[body.boundary.zmax]
+type = "empty"
+[[contact]]
+master = "base/ymax"
+slave = "top/ymin"
+"#;
+
+#[test]
+fn a_body_held_by_contact_alone_needs_implicit_coupling() {
+    let dir = tempfile::tempdir().unwrap();
+    // explicit coupling (the default) applies the contact traction as a
+    // load: the error names the contact and the remedy
+    expect_input_error(
+        dir.path(),
+        RESTING.as_bytes(),
+        &[
+            "body 'top' is not held in the y direction",
+            "base/ymax – top/ymin",
+            "coupling = \"implicit\"",
+        ],
+    );
+    // implicit coupling holds it: the base carries the pressure's force,
+    // p · 0.5 · 0.1 = 0.01 at t = 1 (small strain: the initial area)
+    let implicit = format!("{RESTING}coupling = \"implicit\"\n");
+    let (code, outdir, err) = run_quietly(dir.path(), implicit.as_bytes());
+    assert_eq!(code, 0, "{err}");
+    let summary = std::fs::read_to_string(outdir.join("resting/summary.json")).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&summary).unwrap();
+    let fy = v["patches"]["base/ymin"]["reaction_force"][1]
+        .as_f64()
+        .unwrap();
+    assert!((fy / 0.01 - 1.0).abs() < 2e-3, "base reaction {fy}");
+}
+
 #[test]
 fn check_reports_a_benchmark_polymesh() {
     let shared = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/benchmarks");

@@ -92,7 +92,24 @@ fn accept_increment(
 }
 
 /// Runs a validated case to the end (or to its first failure).
+///
+/// A body that nothing but its contacts holds in some direction (a punch
+/// pressed by a load onto its foundation) cannot be solved with explicit
+/// coupling, which applies the contact traction as a load (eq. 4.13): its
+/// matrix is singular. Such contacts are then coupled implicitly (eq.
+/// 4.52, the penalty springs in the matrix hold the body), and the log
+/// says so; where that is not possible (a patch in several pairs between
+/// deformable bodies) the case is an input error naming the contacts.
 pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> {
+    run_case_noting(case, opts, None)
+}
+
+/// [`run_case`], with a warning for the log (the coupling it changed).
+fn run_case_noting(
+    case: &Case,
+    opts: &RunOptions,
+    note: Option<&str>,
+) -> Result<RunOutcome, RunError> {
     let start = Instant::now();
     let mut bodies = set_up(case)?;
     let mut contacts = ContactSet::new(case, &bodies)?;
@@ -143,6 +160,9 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
         cells,
         case.time.steps
     ));
+    if let Some(note) = note {
+        log.warn(note);
+    }
 
     let mut solver = SegregatedSolver::new(&bodies, &case.solver);
     let mut failure: Option<String> = None;
@@ -170,10 +190,32 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
     }
     if let Err(e) = solver.assemble_and_factorise(&bodies, &case.solver.linear) {
         let msg = e.to_string();
-        if let crate::segregated::SolveError::Unconstrained { body, .. } = &e {
+        if let crate::segregated::SolveError::Unconstrained { body, axis } = &e {
+            let held_by = explicit_contacts_of(case, body);
+            if note.is_none() && !held_by.is_empty() && implicit_coupling_allowed(case, &held_by) {
+                let mut switched = case.clone();
+                for &i in &held_by {
+                    switched.contacts[i].coupling = Coupling::Implicit;
+                }
+                let note = format!(
+                    "body '{body}' is held in the {axis} direction by contact alone: [[contact]] {} coupled implicitly (explicit coupling applies the contact traction as a load and cannot hold a body)",
+                    contact_names(case, &held_by)
+                );
+                // the files of this attempt are written afresh
+                drop((log, history, fields));
+                return run_case_noting(&switched, opts, Some(&note));
+            }
+            let hint = if held_by.is_empty() {
+                String::new()
+            } else {
+                format!(
+                    "; held by contact only, it needs coupling = \"implicit\" on [[contact]] {} (explicit coupling applies the contact traction as a load and cannot hold a body)",
+                    contact_names(case, &held_by)
+                )
+            };
             return Err(RunError::Input(InputError::new(
                 &case.source.path,
-                msg + &explicit_contact_hint(case, body),
+                msg + &hint,
             )));
         }
         failure = Some(msg);
@@ -442,28 +484,54 @@ pub fn run_case(case: &Case, opts: &RunOptions) -> Result<RunOutcome, RunError> 
     })
 }
 
-/// For a body that nothing but contact holds: the explicitly coupled
-/// contacts it is in, and the remedy. Explicit coupling applies the contact
-/// traction as a load (eq. 4.13), so the body's own matrix stays singular;
-/// implicit coupling puts the penalty springs into the matrix (eq. 4.52)
-/// and can hold it.
-fn explicit_contact_hint(case: &Case, body: &str) -> String {
-    let pairs: Vec<String> = case
-        .contacts
+/// The explicitly coupled contacts a body is in.
+fn explicit_contacts_of(case: &Case, body: &str) -> Vec<usize> {
+    (0..case.contacts.len())
+        .filter(|&i| {
+            let c = &case.contacts[i];
+            c.coupling == Coupling::Explicit && (c.master.0 == body || c.slave.0 == body)
+        })
+        .collect()
+}
+
+/// Whether the contacts `switch` may be coupled implicitly: a deformable
+/// body's patch in several pairs takes one coupling for all of them, and
+/// implicit only against rigid bodies (the rule the case reader applies).
+fn implicit_coupling_allowed(case: &Case, switch: &[usize]) -> bool {
+    let rigid = |body: &str| case.bodies.iter().any(|b| b.name == body && b.rigid);
+    switch.iter().all(|&i| {
+        let c = &case.contacts[i];
+        [(&c.master, &c.slave), (&c.slave, &c.master)]
+            .into_iter()
+            .filter(|(side, _)| !rigid(&side.0))
+            .all(|(side, other)| {
+                case.contacts.iter().enumerate().all(|(j, o)| {
+                    let o_other = if j == i {
+                        return true;
+                    } else if o.master == *side {
+                        &o.slave
+                    } else if o.slave == *side {
+                        &o.master
+                    } else {
+                        return true;
+                    };
+                    switch.contains(&j) && rigid(&other.0) && rigid(&o_other.0)
+                })
+            })
+    })
+}
+
+/// `master – slave` of the contacts `which`, for messages.
+fn contact_names(case: &Case, which: &[usize]) -> String {
+    which
         .iter()
-        .filter(|c| c.coupling == Coupling::Explicit && (c.master.0 == body || c.slave.0 == body))
-        .map(|c| {
+        .map(|&i| {
+            let c = &case.contacts[i];
             format!(
                 "{}/{} – {}/{}",
                 c.master.0, c.master.1, c.slave.0, c.slave.1
             )
         })
-        .collect();
-    if pairs.is_empty() {
-        return String::new();
-    }
-    format!(
-        "; held by contact only, it needs coupling = \"implicit\" on [[contact]] {} (explicit coupling applies the contact traction as a load and cannot hold a body)",
-        pairs.join(", ")
-    )
+        .collect::<Vec<_>>()
+        .join(", ")
 }

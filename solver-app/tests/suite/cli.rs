@@ -282,30 +282,42 @@ slave = "top/ymin"
 "#;
 
 #[test]
-fn a_body_held_by_contact_alone_needs_implicit_coupling() {
+fn a_body_held_by_contact_alone_is_coupled_implicitly() {
     let dir = tempfile::tempdir().unwrap();
     // explicit coupling (the default) applies the contact traction as a
-    // load: the error names the contact and the remedy
-    expect_input_error(
-        dir.path(),
-        RESTING.as_bytes(),
-        &[
-            "body 'top' is not held in the y direction",
-            "base/ymax – top/ymin",
-            "coupling = \"implicit\"",
-        ],
-    );
-    // implicit coupling holds it: the base carries the pressure's force,
+    // load and cannot hold the block: its contact is coupled implicitly,
+    // with a warning, and the base carries the pressure's force,
     // p · 0.5 · 0.1 = 0.01 at t = 1 (small strain: the initial area)
-    let implicit = format!("{RESTING}coupling = \"implicit\"\n");
-    let (code, outdir, err) = run_quietly(dir.path(), implicit.as_bytes());
+    let (code, outdir, err) = run_quietly(dir.path(), RESTING.as_bytes());
     assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("body 'top' is held in the y direction by contact alone")
+            && err.contains("base/ymax – top/ymin coupled implicitly"),
+        "{err}"
+    );
     let summary = std::fs::read_to_string(outdir.join("resting/summary.json")).unwrap();
     let v: serde_json::Value = serde_json::from_str(&summary).unwrap();
     let fy = v["patches"]["base/ymin"]["reaction_force"][1]
         .as_f64()
         .unwrap();
     assert!((fy / 0.01 - 1.0).abs() < 2e-3, "base reaction {fy}");
+    let log = std::fs::read_to_string(outdir.join("resting/log.txt")).unwrap();
+    assert!(log.contains("coupled implicitly"), "{log}");
+
+    // the block's patch in a second pair with a deformable body: implicit
+    // coupling cannot join them, so the case is an input error that names
+    // the contacts and the remedy
+    let second = RESTING.replace("[[contact]]", "[[body]]\nname = \"side\"\nmesh = { generator = \"box\", min = [0.8, 0.5, 0], max = [1, 0.8, 0.1], cells = [2, 3, 1] }\nmaterial = { model = \"linear-elastic\", E = 200.0, nu = 0.3 }\n[body.boundary.xmax]\ntype = \"displacement\"\nvalue = [0, 0, 0]\n[body.boundary.zmin]\ntype = \"empty\"\n[body.boundary.zmax]\ntype = \"empty\"\n[[contact]]\nmaster = \"side/ymin\"\nslave = \"top/ymin\"\n[[contact]]")
+        ;
+    expect_input_error(
+        dir.path(),
+        second.as_bytes(),
+        &[
+            "body 'top' is not held in the y direction",
+            "side/ymin – top/ymin, base/ymax – top/ymin",
+            "coupling = \"implicit\"",
+        ],
+    );
 }
 
 #[test]

@@ -114,6 +114,46 @@ fn run_case_noting(
     let mut bodies = set_up(case)?;
     let mut contacts = ContactSet::new(case, &bodies)?;
     contacts.prepare_conditions(&mut bodies);
+    let mut solver = SegregatedSolver::new(&bodies, &case.solver);
+    let mut failure: Option<String> = None;
+    // the temporal diagonal of the first assembly needs the first time step
+    let first_dt = case.time.dt();
+    for inertia in bodies
+        .iter_mut()
+        .filter_map(|b| b.momentum.inertia.as_mut())
+    {
+        inertia.set_time_step(first_dt);
+    }
+    if let Err(e) = solver.assemble_and_factorise(&bodies, &case.solver.linear) {
+        let msg = e.to_string();
+        if let crate::segregated::SolveError::Unconstrained { body, axis } = &e {
+            let held_by = explicit_contacts_of(case, body);
+            if note.is_none() && !held_by.is_empty() && implicit_coupling_allowed(case, &held_by) {
+                let mut switched = case.clone();
+                for &i in &held_by {
+                    switched.contacts[i].coupling = Coupling::Implicit;
+                }
+                let note = format!(
+                    "body '{body}' is held in the {axis} direction by contact alone: [[contact]] {} coupled implicitly (explicit coupling applies the contact traction as a load and cannot hold a body)",
+                    contact_names(case, &held_by)
+                );
+                return run_case_noting(&switched, opts, Some(&note));
+            }
+            let hint = if held_by.is_empty() {
+                String::new()
+            } else {
+                format!(
+                    "; held by contact only, it needs coupling = \"implicit\" on [[contact]] {} (explicit coupling applies the contact traction as a load and cannot hold a body)",
+                    contact_names(case, &held_by)
+                )
+            };
+            return Err(RunError::Input(InputError::new(
+                &case.source.path,
+                msg + &hint,
+            )));
+        }
+        failure = Some(msg);
+    }
     // FVC_TRACE=1 prints the residual of every outer iteration, 2 also the
     // contact statistics (debugging aid)
     let trace_outer = std::env::var_os("FVC_TRACE").is_some_and(|v| v == "1" || v == "2");
@@ -164,8 +204,6 @@ fn run_case_noting(
         log.warn(note);
     }
 
-    let mut solver = SegregatedSolver::new(&bodies, &case.solver);
-    let mut failure: Option<String> = None;
     let tty = std::io::stderr().is_terminal() && !opts.quiet && !opts.no_files;
     let bar = if tty {
         let pb = indicatif::ProgressBar::new(case.time.steps as u64);
@@ -180,46 +218,6 @@ fn run_case_noting(
         None
     };
 
-    // the temporal diagonal of the first assembly needs the first time step
-    let first_dt = case.time.dt();
-    for inertia in bodies
-        .iter_mut()
-        .filter_map(|b| b.momentum.inertia.as_mut())
-    {
-        inertia.set_time_step(first_dt);
-    }
-    if let Err(e) = solver.assemble_and_factorise(&bodies, &case.solver.linear) {
-        let msg = e.to_string();
-        if let crate::segregated::SolveError::Unconstrained { body, axis } = &e {
-            let held_by = explicit_contacts_of(case, body);
-            if note.is_none() && !held_by.is_empty() && implicit_coupling_allowed(case, &held_by) {
-                let mut switched = case.clone();
-                for &i in &held_by {
-                    switched.contacts[i].coupling = Coupling::Implicit;
-                }
-                let note = format!(
-                    "body '{body}' is held in the {axis} direction by contact alone: [[contact]] {} coupled implicitly (explicit coupling applies the contact traction as a load and cannot hold a body)",
-                    contact_names(case, &held_by)
-                );
-                // the files of this attempt are written afresh
-                drop((log, history, fields));
-                return run_case_noting(&switched, opts, Some(&note));
-            }
-            let hint = if held_by.is_empty() {
-                String::new()
-            } else {
-                format!(
-                    "; held by contact only, it needs coupling = \"implicit\" on [[contact]] {} (explicit coupling applies the contact traction as a load and cannot hold a body)",
-                    contact_names(case, &held_by)
-                )
-            };
-            return Err(RunError::Input(InputError::new(
-                &case.source.path,
-                msg + &hint,
-            )));
-        }
-        failure = Some(msg);
-    }
     let reassemble_every_increment = bodies
         .iter()
         .any(|b| !b.rigid && b.momentum.law.is_updated_lagrangian());

@@ -27,7 +27,7 @@ mod source;
 mod values;
 
 pub use boundary::{BoundarySpec, BOUNDARY_TYPES};
-pub use contact::{ContactAlgorithm, ContactSpec, Coupling, Detection, FacePosition};
+pub use contact::{Augmentation, ContactAlgorithm, ContactSpec, Coupling, Detection, FacePosition};
 pub use error::InputError;
 pub use material::{MaterialModel, MaterialSpec};
 pub use mesh::{MeshSpec, GENERATORS};
@@ -268,6 +268,15 @@ fn build(t: &Table<'_>, source: CaseSource) -> Res<Case> {
                         )));
                     }
                 }
+            }
+            if spec.augmentation.is_some() && is_rigid(&spec.slave) {
+                // the multipliers live on the slave faces, where the
+                // algorithms resolve the pressure
+                return Err(node.table()?.req("augmentation")?.node().err(format!(
+                    "augmentation needs a deformable slave; \"{}/{}\" is a rigid body's \
+                     patch: make it the master",
+                    spec.slave.0, spec.slave.1
+                )));
             }
             contacts.push(spec);
         }

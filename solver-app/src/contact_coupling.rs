@@ -6,8 +6,8 @@
 //! under-relaxed tractions (eq. 4.13) become the traction condition of the
 //! contact patches.
 use crate::case::{
-    Case, ContactAlgorithm as AlgorithmName, Coupling as CouplingName, Detection, FacePosition,
-    InputError, ScalarValue,
+    Augmentation, Case, ContactAlgorithm as AlgorithmName, Coupling as CouplingName, Detection,
+    FacePosition, InputError, ScalarValue,
 };
 use crate::model::Body;
 use crate::profile::Phase;
@@ -434,10 +434,90 @@ pub struct ContactInterface {
     /// A stiff pair whose springs are solved with the components coupled
     /// ([`INCLINED_SHARE`]); once set it holds until the increment ends.
     coupled_components: bool,
+    /// Augmented Lagrangian updates (`contact.augmentation`), the
+    /// multiplier λ per slave face (the pressure the penalty adds to), its
+    /// value at the start of the attempt, the updates made in the
+    /// increment, and the slave faces' shifts with λ/ε_n (workspace).
+    augmentation: Option<Augmentation>,
+    multiplier: Vec<f64>,
+    multiplier_saved: Vec<f64>,
+    augmentation_updates: usize,
+    augmented_shift: Vec<Vector>,
     /// Tractions, pressures and gaps of the last call.
     pub tractions: ContactTractions,
     /// Summary of the last call.
     pub stats: ContactStats,
+}
+
+impl ContactInterface {
+    /// The gaps the algorithm measured with the slave faces moved on by
+    /// λ/ε_n ([`ContactSet::update`]) back to the faces' own: the output
+    /// and the augmentation's test see the true penetration.
+    fn unshift_augmented_gaps(&mut self) {
+        let eps = self.law.normal_penalty;
+        if !(eps > 0.0) || self.multiplier.is_empty() {
+            return;
+        }
+        let slave = &mut self.tractions.slave;
+        let mut max_penetration = 0.0f64;
+        for (f, g) in slave.gap.iter_mut().enumerate() {
+            if g.is_finite() {
+                *g += self.multiplier.get(f).copied().unwrap_or(0.0) / eps;
+                if slave.pressure[f] > 0.0 {
+                    max_penetration = max_penetration.max(-*g);
+                }
+            }
+        }
+        self.stats.max_penetration = max_penetration;
+    }
+
+    /// One Uzawa update of the augmented Lagrangian, λ ← p (the pressure
+    /// λ + ε_n g⁻ of the last contact update), unless the largest true
+    /// penetration is within `penetration` of the mean height of the slave
+    /// cells in contact or the increment has had its `max_updates`.
+    /// Returns whether λ changed (the outer loop must go on).
+    fn augment(&mut self, bodies: &[Body]) -> bool {
+        let Some(aug) = self.augmentation else {
+            return false;
+        };
+        let n = self.slave.surface.n_faces();
+        if self.multiplier.len() != n {
+            self.multiplier = vec![0.0; n];
+        }
+        let pressure = &self.tractions.slave.pressure;
+        if pressure.len() != n || self.augmentation_updates >= aug.max_updates {
+            return false;
+        }
+        // mean height of the cells in contact (the slave's, or the
+        // master's against a rigid slave)
+        let side = if bodies[self.slave.body].rigid {
+            &self.master
+        } else {
+            &self.slave
+        };
+        let b = &bodies[side.body];
+        let first = b.mesh.patches[side.patch].start;
+        let contact = if bodies[self.slave.body].rigid {
+            &self.tractions.master
+        } else {
+            &self.tractions.slave
+        };
+        let (mut h, mut k) = (0.0, 0usize);
+        for (f, &p) in contact.pressure.iter().enumerate() {
+            if p > 0.0 && !b.rigid {
+                h += 2.0 * b.momentum.normal_distance(first + f);
+                k += 1;
+            }
+        }
+        if k == 0 || self.stats.max_penetration <= aug.penetration * h / k as f64 {
+            return false;
+        }
+        for (l, &p) in self.multiplier.iter_mut().zip(pressure) {
+            *l = if p.is_finite() { p.max(0.0) } else { 0.0 };
+        }
+        self.augmentation_updates += 1;
+        true
+    }
 }
 
 /// All contacts of a case plus the cell-to-point operators they need.
@@ -783,6 +863,11 @@ impl ContactSet {
                 deformable_pair: !bodies[mb].rigid && !bodies[sb].rigid,
                 stiff: false,
                 coupled_components: false,
+                augmentation: c.augmentation,
+                multiplier: Vec::new(),
+                multiplier_saved: Vec::new(),
+                augmentation_updates: 0,
+                augmented_shift: Vec::new(),
                 tractions: ContactTractions::new(),
                 stats: ContactStats::default(),
             });
@@ -1038,6 +1123,25 @@ impl ContactSet {
             if ci.face_shifts {
                 Self::face_shifts(&mut ci.master, bodies);
                 Self::face_shifts(&mut ci.slave, bodies);
+            }
+            let eps = ci.law.normal_penalty;
+            if ci.augmentation.is_some() && eps > 0.0 && ci.multiplier.iter().any(|&l| l > 0.0) {
+                // the slave faces moved on by λ/ε_n along their normals: the
+                // penalty then adds ε_n times the penetration to λ
+                let slave = &ci.slave;
+                ci.augmented_shift.clear();
+                ci.augmented_shift
+                    .extend((0..slave.surface.n_faces()).map(|f| {
+                        let base = slave
+                            .face_shift
+                            .get(f)
+                            .copied()
+                            .unwrap_or_else(Vector::zeros);
+                        base + slave.surface.face_normals[f] * (ci.multiplier[f] / eps)
+                    }));
+                ci.algorithm
+                    .set_face_shifts(&ci.master.face_shift, &ci.augmented_shift);
+            } else if ci.face_shifts || ci.augmentation.is_some() {
                 ci.algorithm
                     .set_face_shifts(&ci.master.face_shift, &ci.slave.face_shift);
             }
@@ -1069,6 +1173,9 @@ impl ContactSet {
                     &mut ci.tractions,
                 )
                 .map_err(|e| format!("contact {}: {e}", ci.slave_name))?;
+            if ci.augmentation.is_some() {
+                ci.unshift_augmented_gaps();
+            }
             transmitted_forces(&mut ci.stats, &ci.tractions, &ci.master, &ci.slave, bodies);
             let info = ci
                 .coupling
@@ -1245,6 +1352,17 @@ impl ContactSet {
         Ok(max_change)
     }
 
+    /// Augmented Lagrangian: one Uzawa update of every augmented contact
+    /// whose penetration is still too large, once the outer loop has
+    /// converged for the current multipliers. Returns whether any changed.
+    pub fn augment(&mut self, bodies: &[Body]) -> bool {
+        let mut changed = false;
+        for ci in &mut self.interfaces {
+            changed |= ci.augment(bodies);
+        }
+        changed
+    }
+
     /// Records the coupling state at the start of an attempt at an
     /// increment.
     pub fn save_start(&mut self) {
@@ -1257,6 +1375,8 @@ impl ContactSet {
             ci.last_force_change = 0.0;
             ci.coupling_saved.clone_from(&ci.coupling);
             ci.ggi_saved.clone_from(&ci.tractions.ggi);
+            ci.multiplier_saved.clone_from(&ci.multiplier);
+            ci.augmentation_updates = 0;
             for side in [&mut ci.master, &mut ci.slave] {
                 side.saved.0.clone_from(&side.applied);
                 side.saved.1.clone_from(&side.beta);
@@ -1277,6 +1397,8 @@ impl ContactSet {
             // after a blow-up): measured with them, the opposite cells'
             // motion since `opposite_reference` would be spurious
             ci.tractions.ggi.clone_from(&ci.ggi_saved);
+            ci.multiplier.clone_from(&ci.multiplier_saved);
+            ci.augmentation_updates = 0;
             ci.coupled_components = false;
             for side in [&mut ci.master, &mut ci.slave] {
                 side.applied.clone_from(&side.saved.0);

@@ -71,6 +71,14 @@ const CYCLE_PATIENCE: usize = 500;
 const CYCLE_MATCH: f64 = 1e-3;
 /// Smallest relative change from one iteration to the next in a cycle.
 const CYCLE_SWING: f64 = 1e-2;
+/// The outer residual, relative to the tolerance, below which the
+/// augmented Lagrangian multipliers are updated (`contact.augmentation`):
+/// an inexact Uzawa iteration, which does not converge the loop for
+/// multipliers that are about to change. Hertz cylinder (coarse, penalty
+/// scale 1) to the same answer: 190 outer iterations at 1 (updates at
+/// convergence), 144 at 10, 114 at 100, 87 at 1,000; the die drawing
+/// follows the reference force as closely at 100 as at 1,000.
+const AUGMENTATION_RESIDUAL: f64 = 100.0;
 /// Smallest fraction of the configured displacement relaxation, after
 /// cycles or diverged attempts ([`SegregatedSolver::set_divergence_retries`]).
 const MIN_RELAXATION_FRACTION: f64 = 1.0 / 16.0;
@@ -1161,6 +1169,17 @@ impl SegregatedSolver {
             }
             info.required = self.tolerance * contacts.explicit_relaxation_fraction();
             info.contact_unsettled = !self.contact_settled();
+            // augmented Lagrangian: near convergence for the current
+            // multipliers, update them while the penetration is large
+            if residual < AUGMENTATION_RESIDUAL * info.required
+                && !info.contact_unsettled
+                && contacts.augment(bodies)
+            {
+                if let Some(a) = &mut self.anderson {
+                    a.restart();
+                }
+                continue;
+            }
             if residual < info.required && !info.contact_unsettled {
                 info.converged = true;
                 break;

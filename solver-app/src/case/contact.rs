@@ -50,6 +50,42 @@ pub enum FacePosition {
     BoundaryValue,
 }
 
+/// `contact.augmentation`: augmented Lagrangian (Uzawa) updates of the
+/// normal contact pressure on top of the penalty (beyond the thesis).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Augmentation {
+    /// Largest penetration accepted, relative to the mean height of the
+    /// slave cells in contact (default 1e-3).
+    pub penetration: f64,
+    /// Most multiplier updates per increment (default 20).
+    pub max_updates: usize,
+}
+
+impl Default for Augmentation {
+    fn default() -> Self {
+        Augmentation {
+            penetration: 1e-3,
+            max_updates: 20,
+        }
+    }
+}
+
+/// `augmentation = true | false | { penetration = …, max_updates = … }`.
+fn augmentation(n: &Node<'_>) -> Res<Option<Augmentation>> {
+    if let Ok(on) = n.bool() {
+        return Ok(on.then(Augmentation::default));
+    }
+    let t = n.table()?;
+    t.deny_unknown(&["penetration", "max_updates"])?;
+    let d = Augmentation::default();
+    Ok(Some(Augmentation {
+        penetration: t.opt("penetration", d.penetration, |n| {
+            n.f64_if(|x| x > 0.0 && x < 1.0, "satisfy 0 < penetration < 1")
+        })?,
+        max_updates: t.opt("max_updates", d.max_updates, |n| n.usize_min(1))?,
+    }))
+}
+
 /// A contact pair.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ContactSpec {
@@ -83,6 +119,9 @@ pub struct ContactSpec {
     pub slip_history: SlipHistory,
     /// `face_position`: where a contact face is when the gap is measured.
     pub face_position: FacePosition,
+    /// Augmented Lagrangian updates of the normal pressure (`None`: the
+    /// plain penalty, default).
+    pub augmentation: Option<Augmentation>,
 }
 
 /// `friction`: μ >= 0, a number or a time table of numbers.
@@ -134,6 +173,7 @@ pub(crate) fn contact(node: &Node<'_>, bodies: &[&str]) -> Res<ContactSpec> {
         "detection",
         "slip_history",
         "face_position",
+        "augmentation",
     ])?;
     let master = t.need("master", |n| body_patch(n, bodies))?;
     let slave_node = t.req("slave")?;
@@ -215,5 +255,6 @@ pub(crate) fn contact(node: &Node<'_>, bodies: &[&str]) -> Res<ContactSpec> {
                 ],
             )
         })?,
+        augmentation: t.opt("augmentation", None, augmentation)?,
     })
 }

@@ -829,6 +829,7 @@ material = { model = "linear-elastic", E = 1, nu = 0.3 }
             detection: Detection::AdvancingFront,
             slip_history: contact_force::SlipHistory::Incremental,
             face_position: FacePosition::Interpolated,
+            augmentation: None,
         }]
     );
     let c = parse(&format!(
@@ -1117,4 +1118,38 @@ fn rotation_axis_is_normalised_without_overflow() {
         panic!()
     };
     assert!((r.axis[0] - 0.6).abs() < 1e-15 && (r.axis[1] - 0.8).abs() < 1e-15);
+}
+
+#[test]
+fn augmentation_forms_and_the_rigid_slave_rule() {
+    let two = |contact: &str| {
+        format!(
+            "{MIN}[[body]]\nname = \"plate\"\nrigid = true\nmesh = {{ generator = \"box\", min = [0, 1, 0], max = [1, 2, 0.1], cells = [1, 1, 1] }}\nmaterial = {{ model = \"linear-elastic\", E = 200.0, nu = 0.3 }}\n[[contact]]\n{contact}\n"
+        )
+    };
+    let c = parse(&two("master = \"plate/ymin\"\nslave = \"block/ymax\""));
+    assert_eq!(c.contacts[0].augmentation, None);
+    let c = parse(&two(
+        "master = \"plate/ymin\"\nslave = \"block/ymax\"\naugmentation = true",
+    ));
+    assert_eq!(c.contacts[0].augmentation, Some(Augmentation::default()));
+    let c = parse(&two(
+        "master = \"plate/ymin\"\nslave = \"block/ymax\"\naugmentation = { penetration = 1e-4, max_updates = 5 }",
+    ));
+    assert_eq!(
+        c.contacts[0].augmentation,
+        Some(Augmentation {
+            penetration: 1e-4,
+            max_updates: 5
+        })
+    );
+    let x = fail(&two(
+        "master = \"plate/ymin\"\nslave = \"block/ymax\"\naugmentation = { penetration = 2 }",
+    ));
+    assert!(x.message.contains("0 < penetration < 1"), "{x}");
+    let x = fail(&two(
+        "master = \"block/ymax\"\nslave = \"plate/ymin\"\naugmentation = true",
+    ));
+    assert_eq!(x.key.as_deref(), Some("contact[0].augmentation"), "{x}");
+    assert!(x.message.contains("make it the master"), "{x}");
 }

@@ -510,6 +510,7 @@ fn case_format_example_parses_with_stated_values() {
             detection: Detection::AdvancingFront,
             slip_history: contact_force::SlipHistory::Incremental,
             face_position: solver_app::case::FacePosition::Interpolated,
+            augmentation: None,
         }]
     );
     assert_eq!(c.output.directory, PathBuf::from("results"));

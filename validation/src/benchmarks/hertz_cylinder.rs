@@ -45,7 +45,17 @@ pub struct HertzCylinder {
 
 /// Runs the coarse (1,615 cells) or fine (6,460 cells) case.
 pub fn run(mesh: &'static str, swapped: bool) -> HertzCylinder {
-    let (dir, mut text) = read_case("hertz-cylinder", &format!("{mesh}.toml"));
+    run_edited(mesh, swapped, |text| text)
+}
+
+/// [`run`] with the case text changed by `edit` first (a setting probed).
+pub fn run_edited(
+    mesh: &'static str,
+    swapped: bool,
+    edit: impl Fn(String) -> String,
+) -> HertzCylinder {
+    let (dir, text) = read_case("hertz-cylinder", &format!("{mesh}.toml"));
+    let mut text = edit(text);
     if swapped {
         text = swap_master_slave(&text, "flat/ymax", "cylinder/curved");
     }

@@ -1,7 +1,7 @@
 //! hertz-cylinder (thesis §5.2.1, `../shared/benchmarks/README.md`): a
 //! half-cylinder on a rigid flat against Hertz (A4–A6) with the computed
 //! force, on the coarse and the fine mesh, with either side as master.
-use validation::benchmarks::hertz_cylinder::{run, HertzCylinder};
+use validation::benchmarks::hertz_cylinder::{run, run_edited, HertzCylinder};
 
 fn report(r: &HertzCylinder) {
     eprintln!(
@@ -71,4 +71,36 @@ fn coarse_mesh_within_five_percent_of_hertz_either_side_master() {
     // axis stresses: 5.0 % p0 at the shallowest coarse cell (depth 0.12 b),
     // the same finite-body offset as on the fine mesh plus the coarse gradient
     check("coarse", 0.05, 0.05, 0.06);
+}
+
+/// Augmented Lagrangian (`augmentation = true`, beyond the thesis) at the
+/// penalty a user tries first: with penalty_scale = 1 the plain penalty
+/// flattens the coarse peak by 7.6 % (the case file's reason for 5); the
+/// Uzawa updates bring it within 1 % of Hertz, closer than the case's
+/// penalty 5 (−3.3 %), at a cost near the plain run's (coarse: 83 outer
+/// iterations plain, 114 augmented; 89 at penalty 5).
+///
+/// The multipliers live on the slave faces: the rigid flat cannot be the
+/// slave (an input error), so the swapped run is not made.
+#[test]
+fn augmented_lagrangian_at_penalty_one_reaches_hertz() {
+    let penalty_one = |text: String| text.replace("\npenalty_scale = 5\n", "\npenalty_scale = 1\n");
+    let plain = run_edited("coarse", false, penalty_one);
+    report(&plain);
+    assert!(plain.peak_error < -0.05, "plain peak {}", plain.peak_error);
+    let r = run_edited("coarse", false, |text| {
+        text.replace(
+            "\npenalty_scale = 5\n",
+            "\npenalty_scale = 1\naugmentation = true\n",
+        )
+    });
+    report(&r);
+    assert!(r.converged);
+    assert!(
+        r.peak_error.abs() < 0.015,
+        "augmented peak {}",
+        r.peak_error
+    );
+    assert!(r.rms_error < 0.05, "augmented RMS {}", r.rms_error);
+    assert!(r.cost.outer_iterations <= 2 * plain.cost.outer_iterations);
 }

@@ -443,6 +443,8 @@ pub struct ContactInterface {
     multiplier_saved: Vec<f64>,
     augmentation_updates: usize,
     augmented_shift: Vec<Vector>,
+    /// λ/ε_n averaged onto the master faces (workspace).
+    augmented_master: Vec<f64>,
     /// Tractions, pressures and gaps of the last call.
     pub tractions: ContactTractions,
     /// Summary of the last call.
@@ -469,6 +471,22 @@ impl ContactInterface {
             }
         }
         self.stats.max_penetration = max_penetration;
+        // the master faces' gaps were measured against the moved slave
+        // faces they overlap (GGI weights)
+        let master = &mut self.tractions.master;
+        self.augmented_master.resize(master.gap.len(), 0.0);
+        let multiplier = &self.multiplier;
+        ggi_average(
+            &self.tractions.ggi,
+            true,
+            |j| multiplier.get(j).copied().unwrap_or(0.0) / eps,
+            &mut self.augmented_master,
+        );
+        for (g, &d) in master.gap.iter_mut().zip(&self.augmented_master) {
+            if g.is_finite() {
+                *g += d;
+            }
+        }
     }
 
     /// One Uzawa update of the augmented Lagrangian, λ ← p (the pressure
@@ -868,6 +886,7 @@ impl ContactSet {
                 multiplier_saved: Vec::new(),
                 augmentation_updates: 0,
                 augmented_shift: Vec::new(),
+                augmented_master: Vec::new(),
                 tractions: ContactTractions::new(),
                 stats: ContactStats::default(),
             });

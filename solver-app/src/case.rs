@@ -159,6 +159,49 @@ pub fn parse_case(text: &str, path: &Path) -> Result<Case, InputError> {
     build(&top, source)
 }
 
+/// Why the pair `spec` cannot share its patch `side` (its master or its
+/// slave) with the pair `o`, if it cannot. A deformable body's patch
+/// carries one contact condition, which sums those of its pairs: their
+/// tractions with explicit coupling, and with implicit coupling their
+/// grounded springs against rigid bodies (a spring to another deformable
+/// body joins two cells, and a patch's condition is either kind, not
+/// both). `None` as well when `side` is a rigid body's or not in `o`.
+pub(crate) fn shared_patch_conflict(
+    spec: &ContactSpec,
+    side: &(String, String),
+    o: &ContactSpec,
+    is_rigid: impl Fn(&(String, String)) -> bool,
+) -> Option<&'static str> {
+    if is_rigid(side) {
+        return None;
+    }
+    let other = if *side == spec.master {
+        &spec.slave
+    } else {
+        &spec.master
+    };
+    let o_other = if o.master == *side {
+        &o.slave
+    } else if o.slave == *side {
+        &o.master
+    } else {
+        return None;
+    };
+    if o_other == other {
+        Some("the same two patches are already a pair")
+    } else if o.coupling != spec.coupling {
+        Some("the pairs of one deformable patch need the same coupling")
+    } else if spec.coupling == Coupling::Implicit && !(is_rigid(other) && is_rigid(o_other)) {
+        Some(
+            "with implicit coupling a deformable body's patch can be in \
+             several pairs only against rigid bodies (use coupling = \
+             \"explicit\", or split the patch)",
+        )
+    } else {
+        None
+    }
+}
+
 fn build(t: &Table<'_>, source: CaseSource) -> Res<Case> {
     t.deny_unknown(&[
         "title", "analysis", "time", "solver", "body", "contact", "output",
@@ -223,44 +266,11 @@ fn build(t: &Table<'_>, source: CaseSource) -> Res<Case> {
         for item in tables(&c.node(), "contact")? {
             let node = item.node();
             let spec = contact::contact(&node, &names)?;
-            // a deformable body's patch carries one contact condition, which
-            // sums those of its pairs: their tractions with explicit coupling,
-            // and with implicit coupling their grounded springs against rigid
-            // bodies (a spring to another deformable body joins two cells,
-            // and a patch's condition is either kind, not both)
             let is_rigid =
                 |side: &(String, String)| bodies.iter().any(|b| b.name == side.0 && b.rigid);
-            for (key, side, other) in [
-                ("master", &spec.master, &spec.slave),
-                ("slave", &spec.slave, &spec.master),
-            ] {
-                if is_rigid(side) {
-                    continue;
-                }
+            for (key, side) in [("master", &spec.master), ("slave", &spec.slave)] {
                 for (j, o) in contacts.iter().enumerate() {
-                    let o_other = if o.master == *side {
-                        &o.slave
-                    } else if o.slave == *side {
-                        &o.master
-                    } else {
-                        continue;
-                    };
-                    let why = if o_other == other {
-                        Some("the same two patches are already a pair")
-                    } else if o.coupling != spec.coupling {
-                        Some("the pairs of one deformable patch need the same coupling")
-                    } else if spec.coupling == Coupling::Implicit
-                        && !(is_rigid(other) && is_rigid(o_other))
-                    {
-                        Some(
-                            "with implicit coupling a deformable body's patch can be in \
-                             several pairs only against rigid bodies (use coupling = \
-                             \"explicit\", or split the patch)",
-                        )
-                    } else {
-                        None
-                    };
-                    if let Some(why) = why {
+                    if let Some(why) = shared_patch_conflict(&spec, side, o, is_rigid) {
                         return Err(node.table()?.req(key)?.node().err(format!(
                             "patch \"{}/{}\" of the deformable body \"{}\" is already in \
                              contact[{j}]: {why}",

@@ -506,23 +506,13 @@ impl ContactInterface {
         if pressure.len() != n || self.augmentation_updates >= aug.max_updates {
             return false;
         }
-        // mean height of the cells in contact (the slave's, or the
-        // master's against a rigid slave)
-        let side = if bodies[self.slave.body].rigid {
-            &self.master
-        } else {
-            &self.slave
-        };
-        let b = &bodies[side.body];
-        let first = b.mesh.patches[side.patch].start;
-        let contact = if bodies[self.slave.body].rigid {
-            &self.tractions.master
-        } else {
-            &self.tractions.slave
-        };
+        // mean height of the slave cells in contact (the case reader
+        // refuses a rigid slave with augmentation)
+        let b = &bodies[self.slave.body];
+        let first = b.mesh.patches[self.slave.patch].start;
         let (mut h, mut k) = (0.0, 0usize);
-        for (f, &p) in contact.pressure.iter().enumerate() {
-            if p > 0.0 && !b.rigid {
+        for (f, &p) in pressure.iter().enumerate() {
+            if p > 0.0 {
                 h += 2.0 * b.momentum.normal_distance(first + f);
                 k += 1;
             }

@@ -128,11 +128,11 @@ fn run_case_noting(
         let msg = e.to_string();
         if let crate::segregated::SolveError::Unconstrained { body, axis } = &e {
             let held_by = explicit_contacts_of(case, body);
-            if note.is_none() && !held_by.is_empty() && implicit_coupling_allowed(case, &held_by) {
-                let mut switched = case.clone();
-                for &i in &held_by {
-                    switched.contacts[i].coupling = Coupling::Implicit;
-                }
+            let mut switched = case.clone();
+            for &i in &held_by {
+                switched.contacts[i].coupling = Coupling::Implicit;
+            }
+            if note.is_none() && !held_by.is_empty() && pairs_compatible(&switched) {
                 let note = format!(
                     "body '{body}' is held in the {axis} direction by contact alone: [[contact]] {} coupled implicitly (explicit coupling applies the contact traction as a load and cannot hold a body)",
                     contact_names(case, &held_by)
@@ -492,30 +492,17 @@ fn explicit_contacts_of(case: &Case, body: &str) -> Vec<usize> {
         .collect()
 }
 
-/// Whether the contacts `switch` may be coupled implicitly: a deformable
-/// body's patch in several pairs takes one coupling for all of them, and
-/// implicit only against rigid bodies (the rule the case reader applies).
-fn implicit_coupling_allowed(case: &Case, switch: &[usize]) -> bool {
-    let rigid = |body: &str| case.bodies.iter().any(|b| b.name == body && b.rigid);
-    switch.iter().all(|&i| {
-        let c = &case.contacts[i];
-        [(&c.master, &c.slave), (&c.slave, &c.master)]
-            .into_iter()
-            .filter(|(side, _)| !rigid(&side.0))
-            .all(|(side, other)| {
-                case.contacts.iter().enumerate().all(|(j, o)| {
-                    let o_other = if j == i {
-                        return true;
-                    } else if o.master == *side {
-                        &o.slave
-                    } else if o.slave == *side {
-                        &o.master
-                    } else {
-                        return true;
-                    };
-                    switch.contains(&j) && rigid(&other.0) && rigid(&o_other.0)
-                })
-            })
+/// Whether every patch shared by several pairs of `case` may be (the case
+/// reader's rule, [`crate::case::shared_patch_conflict`]).
+fn pairs_compatible(case: &Case) -> bool {
+    let is_rigid =
+        |side: &(String, String)| case.bodies.iter().any(|b| b.name == side.0 && b.rigid);
+    case.contacts.iter().enumerate().all(|(i, spec)| {
+        [&spec.master, &spec.slave].into_iter().all(|side| {
+            case.contacts[..i]
+                .iter()
+                .all(|o| crate::case::shared_patch_conflict(spec, side, o, is_rigid).is_none())
+        })
     })
 }
 

@@ -642,6 +642,20 @@ impl ContactInterface {
     pub fn normal_penalty(&self) -> f64 {
         self.law.normal_penalty
     }
+
+    /// The deformable sides' patches as linearised contact conditions
+    /// (implicit coupling, eq. 4.52), grounded against a rigid body.
+    fn linearise_patches(&self, bodies: &mut [Body]) {
+        let grounded = bodies[self.master.body].rigid || bodies[self.slave.body].rigid;
+        for side in [&self.master, &self.slave] {
+            let b = &mut bodies[side.body];
+            if !b.rigid {
+                let mut lc = LinearisedContact::new(side.surface.n_faces());
+                lc.grounded = grounded;
+                b.momentum.conditions[side.patch] = PatchCondition::LinearisedContact(lc);
+            }
+        }
+    }
 }
 
 impl ContactInterface {
@@ -931,14 +945,56 @@ impl ContactSet {
     /// linearised contact conditions (called once, after the bodies are built).
     pub fn prepare_conditions(&self, bodies: &mut [Body]) {
         for ci in self.interfaces.iter().filter(|c| c.implicit) {
-            let grounded = bodies[ci.master.body].rigid || bodies[ci.slave.body].rigid;
-            for side in [&ci.master, &ci.slave] {
-                let b = &mut bodies[side.body];
-                if !b.rigid {
-                    let mut lc = LinearisedContact::new(side.surface.n_faces());
-                    lc.grounded = grounded;
-                    b.momentum.conditions[side.patch] = PatchCondition::LinearisedContact(lc);
-                }
+            ci.linearise_patches(bodies);
+        }
+    }
+
+    /// The explicitly coupled contacts (their indices in the case).
+    pub fn explicit_contacts(&self) -> Vec<usize> {
+        (0..self.interfaces.len())
+            .filter(|&i| !self.interfaces[i].implicit)
+            .collect()
+    }
+
+    /// Couples the contacts `which` implicitly from now on (thesis §4.5),
+    /// between increments or attempts: their patches become linearised
+    /// contact conditions, their relaxation that of implicit coupling, and
+    /// the tractions they carry are where the linearisation starts. The
+    /// caller checks that the case allows it (a patch shared by pairs
+    /// between deformable bodies does not).
+    pub fn couple_implicitly(&mut self, which: &[usize], bodies: &mut [Body]) {
+        for &i in which {
+            let Some(ci) = self.interfaces.get_mut(i) else {
+                continue;
+            };
+            if ci.implicit {
+                continue;
+            }
+            ci.implicit = true;
+            ci.normal_relaxation = IMPLICIT_NORMAL_RELAXATION;
+            ci.tangential_relaxation = IMPLICIT_NORMAL_RELAXATION;
+            ci.normal_damping = 1.0;
+            for coupling in [&mut ci.coupling, &mut ci.coupling_saved] {
+                coupling.set_normal_factor(IMPLICIT_NORMAL_RELAXATION);
+                coupling.set_tangential_factor(IMPLICIT_NORMAL_RELAXATION);
+            }
+            ci.linearise_patches(bodies);
+            if ci.deformable_pair {
+                // the opposite cells' motion (eq. 4.69) counts from here
+                let (bm, bs) = (&bodies[ci.master.body], &bodies[ci.slave.body]);
+                let (master, slave, ggi) = (&mut ci.master, &mut ci.slave, &ci.tractions.ggi);
+                ggi_average(
+                    ggi,
+                    true,
+                    |j| owner_u(bs, slave, j),
+                    &mut master.opposite_reference,
+                );
+                ggi_average(
+                    ggi,
+                    false,
+                    |j| owner_u(bm, master, j),
+                    &mut slave.opposite_reference,
+                );
             }
         }
     }

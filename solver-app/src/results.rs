@@ -335,6 +335,9 @@ pub struct Summary {
     pub failure: Option<String>,
     /// Seconds per phase of the solution (after at least one increment).
     pub profile: Option<crate::profile::PhaseTimes>,
+    /// Explicitly coupled contacts the run coupled implicitly after an
+    /// increment failed, one message per switch.
+    pub coupling_switched: Vec<String>,
 }
 
 /// Writes `summary.json` (atomically: temp file + rename).
@@ -368,6 +371,7 @@ pub fn write_summary(
             serde_json::json!({
                 "master": c.master_name,
                 "slave": c.slave_name,
+                "coupling": if c.implicit { "implicit" } else { "explicit" },
                 "normal_force": c.stats.normal_force,
                 "tangential_force": [t.x, t.y, t.z],
                 "max_pressure": c.stats.max_pressure,
@@ -376,6 +380,9 @@ pub fn write_summary(
             })
         }).collect::<Vec<_>>(),
     });
+    if !s.coupling_switched.is_empty() {
+        v["coupling_switched"] = serde_json::json!(s.coupling_switched);
+    }
     if let Some(reason) = &s.failure {
         v["failure"] = serde_json::Value::String(reason.clone());
     }

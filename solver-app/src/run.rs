@@ -202,6 +202,7 @@ fn run_case_noting(
     ));
     if let Some(note) = note {
         log.warn(note);
+        summary.coupling_switched.push(note.to_owned());
     }
 
     let tty = std::io::stderr().is_terminal() && !opts.quiet && !opts.no_files;
@@ -229,6 +230,7 @@ fn run_case_noting(
     let mut path_end = PathChange::default();
     let solve_start = Instant::now();
     let mut cell_iterations = 0.0;
+    let mut switched_coupling = false;
     for k in 1..=case.time.steps {
         if failure.is_some() {
             break;
@@ -299,6 +301,39 @@ fn run_case_noting(
                 Ok(info) => !info.converged,
                 Err(e) => !matches!(e, crate::segregated::SolveError::Unconstrained { .. }),
             };
+            // explicit coupling that failed: the attempt is redone, with the
+            // same step, coupled implicitly (once; the contacts stay so)
+            let switch = if failed && !opts.no_cutbacks && !switched_coupling {
+                switchable_explicit_contacts(case, &contacts)
+            } else {
+                Vec::new()
+            };
+            if !switch.is_empty() {
+                let why = match &attempt {
+                    Ok(info) => {
+                        total.outer_iterations += info.outer_iterations;
+                        total.linear_iterations += info.linear_iterations;
+                        format!(
+                            "no convergence in {} outer iterations",
+                            info.outer_iterations
+                        )
+                    }
+                    Err(e) => e.to_string(),
+                };
+                for b in bodies.iter_mut() {
+                    b.restore_start();
+                }
+                contacts.restore_start();
+                contacts.couple_implicitly(&switch, &mut bodies);
+                switched_coupling = true;
+                let note = format!(
+                    "increment {k}: step t = {t0:.6e} → {t1:.6e} failed with explicit coupling ({why}); [[contact]] {} coupled implicitly from here on (thesis §4.5), the step redone",
+                    contact_names(case, &switch)
+                );
+                log.warn(&note);
+                summary.coupling_switched.push(note);
+                continue;
+            }
             if failed && !opts.no_cutbacks && cuts < MAX_CUTBACKS {
                 let why = match &attempt {
                     Ok(info) => format!(
@@ -490,6 +525,24 @@ fn explicit_contacts_of(case: &Case, body: &str) -> Vec<usize> {
             c.coupling == Coupling::Explicit && (c.master.0 == body || c.slave.0 == body)
         })
         .collect()
+}
+
+/// The explicitly coupled contacts of a run, if they may all be coupled
+/// implicitly instead (the case's shared-patch rule still holds then).
+fn switchable_explicit_contacts(case: &Case, contacts: &ContactSet) -> Vec<usize> {
+    let explicit = contacts.explicit_contacts();
+    if explicit.is_empty() {
+        return explicit;
+    }
+    let mut switched = case.clone();
+    for &i in &explicit {
+        switched.contacts[i].coupling = Coupling::Implicit;
+    }
+    if pairs_compatible(&switched) {
+        explicit
+    } else {
+        Vec::new()
+    }
 }
 
 /// Whether every patch shared by several pairs of `case` may be (the case

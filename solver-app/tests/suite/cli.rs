@@ -320,6 +320,82 @@ fn a_body_held_by_contact_alone_is_coupled_implicitly() {
     );
 }
 
+/// Two blocks stacked in plane strain, on rollers (symmetry) at the bottom
+/// and the left, the top face pushed down by 0.008 (a normal
+/// displacement): uniaxial stress σ_yy = E' (d − g) / 0.8, with
+/// E' = E / (1 − ν²) and g the penalty's uniform penetration. Explicit
+/// coupling with the relaxation 1 is unstable (the relaxed iteration is
+/// stable only below about 2 / (1 + ε_n c)).
+const STACKED: &str = r#"title = "stacked"
+[time]
+end = 1.0
+steps = 2
+[solver]
+tolerance = 1e-6
+max_outer = 300
+[[body]]
+name = "base"
+mesh = { generator = "box", min = [0, 0, 0], max = [1, 0.5, 0.1], cells = [10, 5, 1] }
+material = { model = "linear-elastic", E = 200.0, nu = 0.3 }
+[body.boundary.ymin]
+type = "symmetry"
+[body.boundary.xmin]
+type = "symmetry"
+[body.boundary.zmin]
+type = "empty"
+[body.boundary.zmax]
+type = "empty"
+[[body]]
+name = "top"
+mesh = { generator = "box", min = [0, 0.5, 0], max = [1, 0.8, 0.1], cells = [7, 3, 1] }
+material = { model = "linear-elastic", E = 200.0, nu = 0.3 }
+[body.boundary.ymax]
+type = "normal-displacement"
+value = { table = [[0.0, 0.0], [1.0, -0.008]] }
+[body.boundary.xmin]
+type = "symmetry"
+[body.boundary.zmin]
+type = "empty"
+[body.boundary.zmax]
+type = "empty"
+[[contact]]
+master = "base/ymax"
+slave = "top/ymin"
+relaxation = { normal = 1.0, tangential = 1.0 }
+"#;
+
+#[test]
+fn explicit_coupling_that_fails_is_redone_implicitly() {
+    let dir = tempfile::tempdir().unwrap();
+    let (code, outdir, err) = run_quietly(dir.path(), STACKED.as_bytes());
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("failed with explicit coupling")
+            && err.contains("base/ymax – top/ymin coupled implicitly"),
+        "{err}"
+    );
+    let summary = std::fs::read_to_string(outdir.join("stacked/summary.json")).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&summary).unwrap();
+    assert_eq!(v["contacts"][0]["coupling"], "implicit", "{summary}");
+    assert_eq!(
+        v["coupling_switched"].as_array().map(|a| a.len()),
+        Some(1),
+        "{summary}"
+    );
+    // the switched run's answer is the uniaxial one
+    let g = v["contacts"][0]["max_penetration"].as_f64().unwrap();
+    let fy = v["patches"]["top/ymax"]["reaction_force"][1]
+        .as_f64()
+        .unwrap();
+    let e_plane = 200.0 / (1.0 - 0.3 * 0.3);
+    let expected = -e_plane * (0.008 - g) / 0.8 * 0.1;
+    assert!(g > 0.0 && g < 1e-3, "penetration {g}");
+    assert!((fy / expected - 1.0).abs() < 1e-4, "{fy} against {expected}");
+    // both increments are in the results
+    let history = std::fs::read_to_string(outdir.join("stacked/history.csv")).unwrap();
+    assert_eq!(history.lines().count(), 3, "{history}");
+}
+
 #[test]
 fn check_reports_a_benchmark_polymesh() {
     let shared = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/benchmarks");

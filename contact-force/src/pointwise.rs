@@ -10,7 +10,7 @@ use crate::coulomb_friction::{face_friction, FrictionState, SlipHistory};
 use crate::face_pairs::{FacePairs, PairsTranspose};
 use crate::face_shifts::FaceShifts;
 use crate::ggi::GgiScratch;
-use crate::increment_state::{face_mean, IncrementState};
+use crate::increment_state::{contact_share, face_mean, IncrementState};
 use crate::penalty::{normal_pressure, ContactLaw};
 use crate::segment_to_segment::valid_face;
 use crate::smoothed_master::SmoothedMaster;
@@ -66,6 +66,9 @@ pub struct Pointwise {
     point_master: Vec<u32>,
     /// Gaps of the points of one slave face with the face shifts.
     face_gaps: Vec<Real>,
+    /// Smallest gap at the points of each slave face (+∞: none), for the
+    /// friction's [`contact_share`].
+    min_gaps: Vec<Real>,
     shifts: FaceShifts,
     /// The master's symmetry and wedge planes (point, unit normal): the
     /// surface continues across them in its mirror or rotated image.
@@ -354,6 +357,8 @@ impl ContactAlgorithm for Pointwise {
         self.point_gaps(master, slave);
 
         // 2: slave normal traction (eq. 4.11), gap, contact fraction
+        self.min_gaps.clear();
+        self.min_gaps.resize(ns, Real::INFINITY);
         let mut contact_area = 0.0;
         let mut max_penetration: Real = 0.0;
         for s in 0..ns {
@@ -387,6 +392,7 @@ impl ContactAlgorithm for Pointwise {
                     gsum += g;
                     gn += 1;
                     max_penetration = max_penetration.max(-g);
+                    self.min_gaps[s] = self.min_gaps[s].min(g);
                 }
             }
             if gn > 0 {
@@ -402,6 +408,7 @@ impl ContactAlgorithm for Pointwise {
         }
 
         // 3: slave friction (eq. 4.12)
+        self.state.record_gaps(&[], &self.min_gaps);
         let accumulated = law.slip_history == SlipHistory::Accumulated;
         self.master_du.clear();
         self.master_du
@@ -415,7 +422,9 @@ impl ContactAlgorithm for Pointwise {
             if !(p > 0.0) {
                 continue;
             }
-            let own = face_mean(slave, &self.state.du_slave, s);
+            let share = contact_share(self.state.start_gap_slave[s], self.min_gaps[s]);
+            let own = face_mean(slave, &self.state.du_slave, s) * share;
+            let other = self.slave_du_hat[s] * share;
             let hist = if accumulated {
                 self.state.elastic_slave[s]
             } else {
@@ -426,7 +435,7 @@ impl ContactAlgorithm for Pointwise {
                 p,
                 out.slave.contact_fraction[s],
                 &own,
-                &self.slave_du_hat[s],
+                &other,
                 &hist,
                 law.tangential_penalty,
                 law.friction,

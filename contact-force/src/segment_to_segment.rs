@@ -8,7 +8,7 @@ use crate::contact_tractions::{ContactStats, ContactTractions};
 use crate::coulomb_friction::{face_friction, SlipHistory};
 use crate::face_pairs::{FacePairs, PairsTranspose};
 use crate::face_shifts::FaceShifts;
-use crate::increment_state::{face_mean, IncrementState};
+use crate::increment_state::{contact_share, face_mean, IncrementState};
 use crate::occluded_volume::central_integral;
 use crate::penalty::ContactLaw;
 use crate::smoothed_master::{SmoothedGap, SmoothedMaster};
@@ -226,6 +226,10 @@ struct Accumulators {
     slave_contact: Vec<Real>,
     slave_overlap: Vec<Real>,
     slave_gap: Vec<Real>,
+    /// Smallest flat gap at the segment points of each face (+∞: none),
+    /// for the friction's [`contact_share`].
+    master_min_gap: Vec<Real>,
+    slave_min_gap: Vec<Real>,
 }
 
 fn zeroed<T: Clone>(v: &mut Vec<T>, n: usize, zero: T) {
@@ -244,6 +248,8 @@ impl Accumulators {
         zeroed(&mut self.slave_contact, ns, 0.0);
         zeroed(&mut self.slave_overlap, ns, 0.0);
         zeroed(&mut self.slave_gap, ns, 0.0);
+        zeroed(&mut self.master_min_gap, nm, Real::INFINITY);
+        zeroed(&mut self.slave_min_gap, ns, Real::INFINITY);
     }
 }
 
@@ -350,6 +356,9 @@ impl SegmentToSegment {
                 out.ggi.push(s, area);
                 sc.values.clear();
                 sc.values.extend(sc.segment.iter().map(|p| gap.value(p)));
+                let lowest = sc.values.iter().fold(Real::INFINITY, |a, &g| a.min(g));
+                acc.master_min_gap[m] = acc.master_min_gap[m].min(lowest);
+                acc.slave_min_gap[su] = acc.slave_min_gap[su].min(lowest);
                 if let Some(sm) = smoothing {
                     let flat_min = sc.values.iter().fold(Real::INFINITY, |a, &g| a.min(g));
                     // a flat patch: the flat gap is the smoothed one
@@ -453,8 +462,9 @@ impl SegmentToSegment {
             if !(p > 0.0) {
                 continue;
             }
-            let own = face_mean(master, &st.du_master, m);
-            let other = loc.interpolate(slave, &st.du_slave);
+            let share = contact_share(st.start_gap_master[m], self.acc.master_min_gap[m]);
+            let own = face_mean(master, &st.du_master, m) * share;
+            let other = loc.interpolate(slave, &st.du_slave) * share;
             let hist = if accumulated {
                 st.elastic_master[m]
             } else {
@@ -503,8 +513,9 @@ impl SegmentToSegment {
                 keep_best(&mut best, locate_in_polygon(m, &sc.slave_raw, &origin));
             }
             let Some(loc) = best else { continue };
-            let own = face_mean(slave, &st.du_slave, s);
-            let other = loc.interpolate(master, &st.du_master);
+            let share = contact_share(st.start_gap_slave[s], self.acc.slave_min_gap[s]);
+            let own = face_mean(slave, &st.du_slave, s) * share;
+            let other = loc.interpolate(master, &st.du_master) * share;
             let hist = if accumulated {
                 st.elastic_slave[s]
             } else {
@@ -553,6 +564,8 @@ impl ContactAlgorithm for SegmentToSegment {
         self.transpose.build(pairs, ns);
         let (max_penetration, n_overlap) = self.integrate_segments(master, slave, pairs, out);
         self.normal_tractions(master, slave, law, out);
+        self.state
+            .record_gaps(&self.acc.master_min_gap, &self.acc.slave_min_gap);
         self.friction(master, slave, law, out);
         let mut stats = finish_stats(master, slave, out);
         stats.contact_area = self.acc.master_contact.iter().sum();

@@ -390,7 +390,10 @@ fn explicit_coupling_that_fails_is_redone_implicitly() {
     let e_plane = 200.0 / (1.0 - 0.3 * 0.3);
     let expected = -e_plane * (0.008 - g) / 0.8 * 0.1;
     assert!(g > 0.0 && g < 1e-3, "penetration {g}");
-    assert!((fy / expected - 1.0).abs() < 1e-4, "{fy} against {expected}");
+    assert!(
+        (fy / expected - 1.0).abs() < 1e-4,
+        "{fy} against {expected}"
+    );
     // both increments are in the results
     let history = std::fs::read_to_string(outdir.join("stacked/history.csv")).unwrap();
     assert_eq!(history.lines().count(), 3, "{history}");

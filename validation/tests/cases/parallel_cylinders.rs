@@ -44,26 +44,33 @@ fn fine_mesh_hertz_then_cattaneo_mindlin_either_side_master() {
             // the force condition reaches its target (Algorithm 1, tolerance 1e-4)
             assert!((r.force / 10.0 - 1.0).abs() < 2e-3, "F = {}", r.force);
         }
+        // no tangential load: measured 8e-5 F with the lower cylinder
+        // master, 1.7e-4 F with the upper
         assert!(one.shear.abs() < 2e-4 * one.force, "Q = {}", one.shear);
         // each side returns its own frictional traction to the Coulomb cone
         // (symmetric treatment, §4.4), so on non-matching meshes the
-        // tangential forces of the two sides differ: measured 0.7 %
+        // tangential forces of the two sides differ: measured 0.03 % and
+        // 0.06 % (0.7 % before `contact_share`)
         assert!(
-            (two.shear / 0.93616 - 1.0).abs() < 0.01,
+            (two.shear / 0.93616 - 1.0).abs() < 0.005,
             "Q = {}",
             two.shear
         );
         for (p, q) in one.profiles.iter().zip(&two.profiles) {
             // normal load (increment 1): Hertz within 3 % p0 on both bodies
-            // (measured 2.1 % upper, 1.6 % lower); no tangential check: the
-            // faces entering contact near the edges see their vertical
-            // approach, projected on their tilted normals, as slip and
-            // slip at μp there (noted in the issue)
+            // (measured 2.7 % upper, 2.5 % lower) and, identical materials,
+            // no shear: within 1.3 % μp0 on both. A face entering contact
+            // counts as slip only its motion after it closed
+            // (`contact_share`); counted whole, the vertical approach
+            // projected on the tilted faces read as slip and gave 27–30 %.
             assert!(p.pressure_error < 0.03, "{}: {}", p.body, p.pressure_error);
+            assert!(p.shear_error < 0.03, "{}: {}", p.body, p.shear_error);
             assert!(q.pressure_error < 0.03, "{}: {}", q.body, q.pressure_error);
             // the benchmark table asks 5 % μp0: met on the lower cylinder
-            // (4.5 %), not on the upper (7.7 %, at the stick–slip boundary)
-            assert!(q.shear_error < 0.08, "{}: {}", q.body, q.shear_error);
+            // (4.1–4.3 %), not quite on the upper (5.5 % with the lower
+            // master, 4.5 % with the upper; at the stick–slip boundary;
+            // 7.7 % before `contact_share`)
+            assert!(q.shear_error < 0.06, "{}: {}", q.body, q.shear_error);
             let c = q.stick_half_width / (STICK_RATIO * two.hertz.half_width) - 1.0;
             assert!(c.abs() < 0.05, "{}: stick half-width {c:+}", q.body);
         }

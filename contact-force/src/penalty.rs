@@ -24,7 +24,7 @@ impl Default for PenaltyParams {
             penalty_scale: 1.0,
             tangential_penalty_scale: 1.0,
             friction: 0.0,
-            slip_history: SlipHistory::Incremental,
+            slip_history: SlipHistory::Accumulated,
         }
     }
 }

@@ -237,7 +237,7 @@ pub(crate) fn contact(node: &Node<'_>, bodies: &[&str]) -> Res<ContactSpec> {
                 ],
             )
         })?,
-        slip_history: t.opt("slip_history", SlipHistory::Incremental, |n| {
+        slip_history: t.opt("slip_history", SlipHistory::Accumulated, |n| {
             n.choice(
                 "slip_history",
                 &[

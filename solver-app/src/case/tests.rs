@@ -827,7 +827,7 @@ material = { model = "linear-elastic", E = 1, nu = 0.3 }
             relaxation_normal: 0.1,
             relaxation_tangential: 0.1,
             detection: Detection::AdvancingFront,
-            slip_history: contact_force::SlipHistory::Incremental,
+            slip_history: contact_force::SlipHistory::Accumulated,
             face_position: FacePosition::Interpolated,
             augmentation: None,
         }]

@@ -508,7 +508,7 @@ fn case_format_example_parses_with_stated_values() {
             relaxation_normal: 0.1,
             relaxation_tangential: 0.1,
             detection: Detection::AdvancingFront,
-            slip_history: contact_force::SlipHistory::Incremental,
+            slip_history: contact_force::SlipHistory::Accumulated,
             face_position: solver_app::case::FacePosition::Interpolated,
             augmentation: None,
         }]

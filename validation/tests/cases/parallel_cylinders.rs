@@ -49,10 +49,11 @@ fn fine_mesh_hertz_then_cattaneo_mindlin_either_side_master() {
         assert!(one.shear.abs() < 2e-4 * one.force, "Q = {}", one.shear);
         // each side returns its own frictional traction to the Coulomb cone
         // (symmetric treatment, §4.4), so on non-matching meshes the
-        // tangential forces of the two sides differ: measured 0.03 % and
-        // 0.06 % (0.7 % before `contact_share`)
+        // tangential forces of the two sides differ: measured 0.8 % with
+        // the accumulated slip history (the default), 0.03–0.06 % with the
+        // incremental one (0.7 % before `contact_share`)
         assert!(
-            (two.shear / 0.93616 - 1.0).abs() < 0.005,
+            (two.shear / 0.93616 - 1.0).abs() < 0.01,
             "Q = {}",
             two.shear
         );
@@ -67,10 +68,11 @@ fn fine_mesh_hertz_then_cattaneo_mindlin_either_side_master() {
             assert!(p.shear_error < 0.03, "{}: {}", p.body, p.shear_error);
             assert!(q.pressure_error < 0.03, "{}: {}", q.body, q.pressure_error);
             // the benchmark table asks 5 % μp0: met on the lower cylinder
-            // (4.1–4.3 %), not quite on the upper (5.5 % with the lower
-            // master, 4.5 % with the upper; at the stick–slip boundary;
-            // 7.7 % before `contact_share`)
-            assert!(q.shear_error < 0.06, "{}: {}", q.body, q.shear_error);
+            // (4.5 % with the lower master, 3.6 % with the upper), not quite
+            // on the upper (6.0 % and 5.6 %, at the stick–slip boundary;
+            // incremental slip history 5.5 % and 4.5 %; 7.7 % before
+            // `contact_share`)
+            assert!(q.shear_error < 0.065, "{}: {}", q.body, q.shear_error);
             let c = q.stick_half_width / (STICK_RATIO * two.hertz.half_width) - 1.0;
             assert!(c.abs() < 0.05, "{}: stick half-width {c:+}", q.body);
         }

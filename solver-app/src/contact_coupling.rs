@@ -956,6 +956,19 @@ impl ContactSet {
             .collect()
     }
 
+    /// The explicitly coupled contacts whose normal relaxation has been
+    /// damped to its smallest fraction ([`NORMAL_MIN_FRACTION`]): their
+    /// iteration oscillated through every halving, and each increment now
+    /// takes thousands of outer iterations.
+    pub fn explicit_at_smallest_relaxation(&self) -> Vec<usize> {
+        (0..self.interfaces.len())
+            .filter(|&i| {
+                let ci = &self.interfaces[i];
+                !ci.implicit && ci.normal_damping <= NORMAL_MIN_FRACTION
+            })
+            .collect()
+    }
+
     /// Couples the contacts `which` implicitly from now on (thesis §4.5),
     /// between increments or attempts: their patches become linearised
     /// contact conditions, their relaxation that of implicit coupling, and

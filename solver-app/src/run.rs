@@ -457,6 +457,25 @@ fn run_case_noting(
                     ) {
                         failure = Some(format!("after increment {k}: {e}"));
                     }
+                    // explicit coupling that converged only at its smallest
+                    // relaxation: the next increments would grind the same
+                    // way, so they are coupled implicitly
+                    let stalled = contacts.explicit_at_smallest_relaxation();
+                    if !stalled.is_empty() && !switched_coupling && !opts.no_cutbacks {
+                        let switch = switchable_explicit_contacts(case, &contacts);
+                        if !switch.is_empty() {
+                            contacts.couple_implicitly(&switch, &mut bodies);
+                            switched_coupling = true;
+                            let note = format!(
+                                "increment {k}: explicit coupling of [[contact]] {} converged only at its smallest relaxation ({} outer iterations); [[contact]] {} coupled implicitly from the next increment on (thesis §4.5)",
+                                contact_names(case, &stalled),
+                                info.outer_iterations,
+                                contact_names(case, &switch)
+                            );
+                            log.warn(&note);
+                            summary.coupling_switched.push(note);
+                        }
+                    }
                 }
                 if !info.converged {
                     let msg = format!(

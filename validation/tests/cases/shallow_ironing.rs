@@ -54,9 +54,11 @@ fn indentation_vertical_force_against_code_aster() {
 /// centred 25-increment moving average) below 1 % of its mean.
 ///
 /// Measured (implicit coupling, foundation master, the case's Rhie–Chow
-/// 0.5 and penalty_scale 4): μ_g = 0.3108 and an oscillation of 0.513 %,
-/// both pass; 76 outer iterations per increment indenting, 261 sliding
-/// (`fvc run`, one thread). At penalty_scale 1: 0.3090 and 0.358 %, 69 and
+/// 0.5 and penalty_scale 4, the accumulated slip history and the contact
+/// share of the friction): μ_g = 0.3111 and an oscillation of 0.626 %,
+/// both pass; 75 outer iterations per increment indenting, 332 sliding.
+/// Before those two (incremental slip history): 0.3108 and 0.513 %, 76
+/// and 261 (`fvc run`, one thread). At penalty_scale 1: 0.3090 and 0.358 %, 69 and
 /// 300 (before the contact springs per current area and the
 /// path-following predictor: 0.3055 and 0.763 %; before the boundary-face
 /// state: 0.307 and 0.78 %). With Rhie–Chow 0.1: μ_g = 0.306,

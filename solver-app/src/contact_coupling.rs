@@ -984,6 +984,9 @@ impl ContactSet {
                 continue;
             }
             ci.implicit = true;
+            // the next update localises the penalty again and judges the
+            // pair's stiffness (`stiff`), as at the start of an increment
+            ci.penalty_localised = false;
             ci.normal_relaxation = IMPLICIT_NORMAL_RELAXATION;
             ci.tangential_relaxation = IMPLICIT_NORMAL_RELAXATION;
             ci.normal_damping = 1.0;

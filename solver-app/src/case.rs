@@ -32,8 +32,9 @@ pub use error::InputError;
 pub use material::{MaterialModel, MaterialSpec};
 pub use mesh::{MeshSpec, GENERATORS};
 pub use settings::{
-    Acceleration, Analysis, AnalysisKind, LinearMethod, LinearSettings, OnNonConvergence,
-    OutputSettings, Predictor, SolverSettings, StrainKind, TimeControl, ANDERSON_LINEAR_TOLERANCE,
+    Acceleration, Analysis, AnalysisKind, CouplingFallback, LinearMethod, LinearSettings,
+    OnNonConvergence, OutputSettings, Predictor, SolverSettings, StrainKind, TimeControl,
+    ANDERSON_LINEAR_TOLERANCE,
 };
 pub use source::CaseSource;
 pub use values::{Rotation, ScalarValue, VectorValue};

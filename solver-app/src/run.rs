@@ -231,6 +231,7 @@ fn run_case_noting(
     let solve_start = Instant::now();
     let mut cell_iterations = 0.0;
     let mut switched_coupling = false;
+    let may_switch = case.solver.coupling_fallback == crate::case::CouplingFallback::Implicit;
     for k in 1..=case.time.steps {
         if failure.is_some() {
             break;
@@ -303,7 +304,7 @@ fn run_case_noting(
             };
             // explicit coupling that failed: the attempt is redone, with the
             // same step, coupled implicitly (once; the contacts stay so)
-            let switch = if failed && !opts.no_cutbacks && !switched_coupling {
+            let switch = if failed && !opts.no_cutbacks && !switched_coupling && may_switch {
                 switchable_explicit_contacts(case, &contacts)
             } else {
                 Vec::new()
@@ -461,7 +462,8 @@ fn run_case_noting(
                     // relaxation: the next increments would grind the same
                     // way, so they are coupled implicitly
                     let stalled = contacts.explicit_at_smallest_relaxation();
-                    if !stalled.is_empty() && !switched_coupling && !opts.no_cutbacks {
+                    if !stalled.is_empty() && !switched_coupling && !opts.no_cutbacks && may_switch
+                    {
                         let switch = switchable_explicit_contacts(case, &contacts);
                         if !switch.is_empty() {
                             contacts.couple_implicitly(&switch, &mut bodies);

@@ -129,6 +129,18 @@ pub enum Predictor {
     Linear,
 }
 
+/// `solver.coupling_fallback`: what a run does with explicitly coupled
+/// contacts that fail an increment, or converge only at their smallest
+/// relaxation (beyond the thesis).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CouplingFallback {
+    /// `"implicit"` (default): couple them implicitly for the rest of the run.
+    Implicit,
+    /// `"none"`: keep explicit coupling (cut the step back instead), e.g.
+    /// to compare the couplings.
+    None,
+}
+
 /// `solver.linear.method`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum LinearMethod {
@@ -210,6 +222,8 @@ pub struct SolverSettings {
     /// First iterate of each increment (default linear under large strain,
     /// none otherwise).
     pub predictor: Predictor,
+    /// Explicit contacts that fail: coupled implicitly (default) or kept.
+    pub coupling_fallback: CouplingFallback,
 }
 
 impl Default for SolverSettings {
@@ -225,6 +239,7 @@ impl Default for SolverSettings {
             acceleration: Acceleration::None,
             acceleration_depth: 10,
             predictor: Predictor::None,
+            coupling_fallback: CouplingFallback::Implicit,
         }
     }
 }
@@ -407,6 +422,7 @@ pub(crate) fn solver(t: &Table<'_>, defaults: &SolverSettings) -> Res<SolverSett
         "acceleration",
         "acceleration_depth",
         "predictor",
+        "coupling_fallback",
     ])?;
     let d = *defaults;
     let acceleration = t.opt("acceleration", d.acceleration, |n| {
@@ -469,6 +485,15 @@ pub(crate) fn solver(t: &Table<'_>, defaults: &SolverSettings) -> Res<SolverSett
             n.choice(
                 "increment predictor",
                 &[("none", Predictor::None), ("linear", Predictor::Linear)],
+            )
+        })?,
+        coupling_fallback: t.opt("coupling_fallback", d.coupling_fallback, |n| {
+            n.choice(
+                "coupling fallback",
+                &[
+                    ("implicit", CouplingFallback::Implicit),
+                    ("none", CouplingFallback::None),
+                ],
             )
         })?,
     })

@@ -164,6 +164,7 @@ every = 5
             acceleration: Acceleration::Anderson,
             acceleration_depth: 8,
             predictor: Predictor::Linear,
+            coupling_fallback: CouplingFallback::Implicit,
         }
     );
     assert_eq!(c.bodies[0].material.rho, Some(7800.0));
@@ -434,6 +435,21 @@ fn predictor_default_follows_the_strain() {
     let e = fail(&format!("{large}[solver]\npredictor = \"quadratic\"\n"));
     assert_eq!(e.key.as_deref(), Some("solver.predictor"));
     assert!(e.message.contains("\"linear\""), "{e}");
+}
+
+#[test]
+fn coupling_fallback_is_implicit_unless_switched_off() {
+    assert_eq!(
+        parse(MIN).solver.coupling_fallback,
+        CouplingFallback::Implicit
+    );
+    let off = format!("{MIN}[solver]\ncoupling_fallback = \"none\"\n");
+    assert_eq!(parse(&off).solver.coupling_fallback, CouplingFallback::None);
+    let e = fail(&format!(
+        "{MIN}[solver]\ncoupling_fallback = \"explicit\"\n"
+    ));
+    assert_eq!(e.key.as_deref(), Some("solver.coupling_fallback"));
+    assert!(e.message.contains("\"implicit\""), "{e}");
 }
 
 #[test]

@@ -397,6 +397,18 @@ fn explicit_coupling_that_fails_is_redone_implicitly() {
     // both increments are in the results
     let history = std::fs::read_to_string(outdir.join("stacked/history.csv")).unwrap();
     assert_eq!(history.lines().count(), 3, "{history}");
+
+    // kept explicit on request: the step is cut back instead, and the run
+    // fails (exit code 1) with what it wrote so far
+    let kept = STACKED.replace("[solver]\n", "[solver]\ncoupling_fallback = \"none\"\n");
+    let (code, outdir, err) = run_quietly(dir.path(), kept.as_bytes());
+    assert_eq!(code, 1, "{err}");
+    assert!(!err.contains("coupled implicitly"), "{err}");
+    assert!(err.contains("redone in steps of"), "{err}");
+    let summary = std::fs::read_to_string(outdir.join("stacked/summary.json")).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&summary).unwrap();
+    assert_eq!(v["contacts"][0]["coupling"], "explicit", "{summary}");
+    assert!(v.get("coupling_switched").is_none(), "{summary}");
 }
 
 #[test]

@@ -159,7 +159,9 @@ pub fn case_text(opts: &Options) -> String {
                     "coupling = \"explicit\"\nrelaxation = {{ normal = {r}, tangential = {r} }}",
                     r = opts.relaxation
                 ),
-            )
+            );
+            // explicit coupling throughout, not switched to implicit
+            text = text.replace("[solver]\n", "[solver]\ncoupling_fallback = \"none\"\n");
         }
         None => {}
     }

@@ -196,7 +196,12 @@ pub fn case_text(opts: &Options) -> String {
     text = text.replace("intervals = [[1.0, 10], [10.0, 90]]", &intervals);
     match opts.implicit {
         Some(true) => text = text.replace("coupling = \"explicit\"", "coupling = \"implicit\""),
-        Some(false) => text = text.replace("coupling = \"implicit\"", "coupling = \"explicit\""),
+        Some(false) => {
+            // explicit coupling throughout, not switched to implicit
+            text = text
+                .replace("coupling = \"implicit\"", "coupling = \"explicit\"")
+                .replace("[solver]\n", "[solver]\ncoupling_fallback = \"none\"\n");
+        }
         None => {}
     }
     if opts.swapped {

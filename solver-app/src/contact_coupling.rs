@@ -643,6 +643,26 @@ impl ContactInterface {
         self.law.normal_penalty
     }
 
+    /// The opposite cells' displacements, GGI-averaged onto each side's
+    /// faces (u_Ph* of eq. 4.69), as the reference their motion is measured
+    /// from until the next contact evaluation.
+    fn record_opposite_reference(&mut self, bodies: &[Body]) {
+        let (bm, bs) = (&bodies[self.master.body], &bodies[self.slave.body]);
+        let (master, slave, ggi) = (&mut self.master, &mut self.slave, &self.tractions.ggi);
+        ggi_average(
+            ggi,
+            true,
+            |j| owner_u(bs, slave, j),
+            &mut master.opposite_reference,
+        );
+        ggi_average(
+            ggi,
+            false,
+            |j| owner_u(bm, master, j),
+            &mut slave.opposite_reference,
+        );
+    }
+
     /// The deformable sides' patches as linearised contact conditions
     /// (implicit coupling, eq. 4.52), grounded against a rigid body.
     fn linearise_patches(&self, bodies: &mut [Body]) {
@@ -997,20 +1017,7 @@ impl ContactSet {
             ci.linearise_patches(bodies);
             if ci.deformable_pair {
                 // the opposite cells' motion (eq. 4.69) counts from here
-                let (bm, bs) = (&bodies[ci.master.body], &bodies[ci.slave.body]);
-                let (master, slave, ggi) = (&mut ci.master, &mut ci.slave, &ci.tractions.ggi);
-                ggi_average(
-                    ggi,
-                    true,
-                    |j| owner_u(bs, slave, j),
-                    &mut master.opposite_reference,
-                );
-                ggi_average(
-                    ggi,
-                    false,
-                    |j| owner_u(bm, master, j),
-                    &mut slave.opposite_reference,
-                );
+                ci.record_opposite_reference(bodies);
             }
         }
     }
@@ -1338,18 +1345,7 @@ impl ContactSet {
                     &mut slave.opposite_compliance,
                 );
                 if deformable_pair {
-                    ggi_average(
-                        ggi,
-                        true,
-                        |j| owner_u(bs, slave, j),
-                        &mut master.opposite_reference,
-                    );
-                    ggi_average(
-                        ggi,
-                        false,
-                        |j| owner_u(bm, master, j),
-                        &mut slave.opposite_reference,
-                    );
+                    ci.record_opposite_reference(bodies);
                 }
             }
             // the carried-traction base damps the segregated splitting; the

@@ -55,6 +55,14 @@ fn run_quietly(dir: &Path, case: &[u8]) -> (i32, PathBuf, String) {
     (code, outdir, err)
 }
 
+/// `summary.json` of the results folder `res`: its text (for messages)
+/// and its parsed value.
+fn read_summary(res: &Path) -> (String, serde_json::Value) {
+    let text = std::fs::read_to_string(res.join("summary.json")).unwrap();
+    let v = serde_json::from_str(&text).unwrap();
+    (text, v)
+}
+
 fn expect_input_error(dir: &Path, case: &[u8], expected: &[&str]) {
     let (code, _, err) = run_quietly(dir, case);
     assert_eq!(code, 2, "exit code for {expected:?}; stderr: {err}");
@@ -70,8 +78,7 @@ fn good_case_runs_and_writes_results() {
     let (code, outdir, err) = run_quietly(dir.path(), GOOD.as_bytes());
     assert_eq!(code, 0, "{err}");
     let res = outdir.join("block");
-    let summary = std::fs::read_to_string(res.join("summary.json")).unwrap();
-    let v: serde_json::Value = serde_json::from_str(&summary).unwrap();
+    let (_, v) = read_summary(&res);
     assert_eq!(v["converged"], true);
     assert_eq!(v["increments"], 2);
     // uniaxial compression of a free-sided block: F = E ε A (lateral faces free,
@@ -295,8 +302,7 @@ fn a_body_held_by_contact_alone_is_coupled_implicitly() {
             && err.contains("base/ymax – top/ymin coupled implicitly"),
         "{err}"
     );
-    let summary = std::fs::read_to_string(outdir.join("resting/summary.json")).unwrap();
-    let v: serde_json::Value = serde_json::from_str(&summary).unwrap();
+    let (_, v) = read_summary(&outdir.join("resting"));
     let fy = v["patches"]["base/ymin"]["reaction_force"][1]
         .as_f64()
         .unwrap();
@@ -374,8 +380,7 @@ fn explicit_coupling_that_fails_is_redone_implicitly() {
             && err.contains("base/ymax – top/ymin coupled implicitly"),
         "{err}"
     );
-    let summary = std::fs::read_to_string(outdir.join("stacked/summary.json")).unwrap();
-    let v: serde_json::Value = serde_json::from_str(&summary).unwrap();
+    let (summary, v) = read_summary(&outdir.join("stacked"));
     assert_eq!(v["contacts"][0]["coupling"], "implicit", "{summary}");
     assert_eq!(
         v["coupling_switched"].as_array().map(|a| a.len()),
@@ -405,8 +410,7 @@ fn explicit_coupling_that_fails_is_redone_implicitly() {
     assert_eq!(code, 1, "{err}");
     assert!(!err.contains("coupled implicitly"), "{err}");
     assert!(err.contains("redone in steps of"), "{err}");
-    let summary = std::fs::read_to_string(outdir.join("stacked/summary.json")).unwrap();
-    let v: serde_json::Value = serde_json::from_str(&summary).unwrap();
+    let (summary, v) = read_summary(&outdir.join("stacked"));
     assert_eq!(v["contacts"][0]["coupling"], "explicit", "{summary}");
     assert!(v.get("coupling_switched").is_none(), "{summary}");
 }

@@ -1010,10 +1010,9 @@ impl ContactSet {
             ci.normal_relaxation = IMPLICIT_NORMAL_RELAXATION;
             ci.tangential_relaxation = IMPLICIT_NORMAL_RELAXATION;
             ci.normal_damping = 1.0;
-            for coupling in [&mut ci.coupling, &mut ci.coupling_saved] {
-                coupling.set_normal_factor(IMPLICIT_NORMAL_RELAXATION);
-                coupling.set_tangential_factor(IMPLICIT_NORMAL_RELAXATION);
-            }
+            // (the next attempt's `save_start` copies them into its start state)
+            ci.coupling.set_normal_factor(IMPLICIT_NORMAL_RELAXATION);
+            ci.coupling.set_tangential_factor(IMPLICIT_NORMAL_RELAXATION);
             ci.linearise_patches(bodies);
             if ci.deformable_pair {
                 // the opposite cells' motion (eq. 4.69) counts from here

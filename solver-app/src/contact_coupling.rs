@@ -1012,7 +1012,8 @@ impl ContactSet {
             ci.normal_damping = 1.0;
             // (the next attempt's `save_start` copies them into its start state)
             ci.coupling.set_normal_factor(IMPLICIT_NORMAL_RELAXATION);
-            ci.coupling.set_tangential_factor(IMPLICIT_NORMAL_RELAXATION);
+            ci.coupling
+                .set_tangential_factor(IMPLICIT_NORMAL_RELAXATION);
             ci.linearise_patches(bodies);
             if ci.deformable_pair {
                 // the opposite cells' motion (eq. 4.69) counts from here

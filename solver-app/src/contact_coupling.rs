@@ -442,6 +442,11 @@ pub struct ContactInterface {
     multiplier: Vec<f64>,
     multiplier_saved: Vec<f64>,
     augmentation_updates: usize,
+    /// Multiplier updates of the accepted increments, over the run.
+    pub augmentation_updates_run: usize,
+    /// The largest true penetration and the slave cells' mean height at the
+    /// increment's first multiplier update (for the log).
+    first_update: (f64, f64),
     augmented_shift: Vec<Vector>,
     /// λ/ε_n averaged onto the master faces (workspace).
     augmented_master: Vec<f64>,
@@ -520,6 +525,9 @@ impl ContactInterface {
         if k == 0 || self.stats.max_penetration <= aug.penetration * h / k as f64 {
             return false;
         }
+        if self.augmentation_updates == 0 {
+            self.first_update = (self.stats.max_penetration, h / k as f64);
+        }
         for (l, &p) in self.multiplier.iter_mut().zip(pressure) {
             *l = if p.is_finite() { p.max(0.0) } else { 0.0 };
         }
@@ -539,6 +547,9 @@ pub struct ContactSet {
     updates_in_increment: usize,
     /// Seconds in detection and in the contact force.
     pub times: crate::profile::PhaseTimes,
+    /// Contacts whose multipliers were first updated in the increments
+    /// committed since [`Self::take_newly_augmented`] was last called.
+    newly_augmented: Vec<usize>,
     /// `FVC_TRACE=2`: print the contact statistics of every update (read
     /// once, not per outer iteration).
     trace: bool,
@@ -790,6 +801,7 @@ impl ContactSet {
             cell_to_point: (0..bodies.len()).map(|_| None).collect(),
             updates_in_increment: 0,
             times: Default::default(),
+            newly_augmented: Vec::new(),
             trace: std::env::var_os("FVC_TRACE").is_some_and(|v| v == "2"),
         };
         for (ci, c) in case.contacts.iter().enumerate() {
@@ -909,6 +921,8 @@ impl ContactSet {
                 multiplier: Vec::new(),
                 multiplier_saved: Vec::new(),
                 augmentation_updates: 0,
+                augmentation_updates_run: 0,
+                first_update: (0.0, 0.0),
                 augmented_shift: Vec::new(),
                 augmented_master: Vec::new(),
                 tractions: ContactTractions::new(),
@@ -1429,6 +1443,23 @@ impl ContactSet {
         Ok(max_change)
     }
 
+    /// The contacts (case order) whose augmented Lagrangian updated its
+    /// multipliers for the first time in the run since the last call, each
+    /// with the largest penetration and the slave cells' mean height at that
+    /// first update.
+    pub fn take_newly_augmented(&mut self) -> Vec<(usize, f64, f64)> {
+        let out = self
+            .newly_augmented
+            .iter()
+            .map(|&i| {
+                let (penetration, height) = self.interfaces[i].first_update;
+                (i, penetration, height)
+            })
+            .collect();
+        self.newly_augmented.clear();
+        out
+    }
+
     /// Augmented Lagrangian: one Uzawa update of every augmented contact
     /// whose penetration is still too large, once the outer loop has
     /// converged for the current multipliers. Returns whether any changed.
@@ -1491,7 +1522,12 @@ impl ContactSet {
     /// End of a converged increment: friction history.
     pub fn commit_increment(&mut self) {
         self.updates_in_increment = 0;
-        for ci in &mut self.interfaces {
+        for (i, ci) in self.interfaces.iter_mut().enumerate() {
+            if ci.augmentation_updates > 0 && ci.augmentation_updates_run == 0 {
+                self.newly_augmented.push(i);
+            }
+            ci.augmentation_updates_run += ci.augmentation_updates;
+            ci.augmentation_updates = 0;
             ci.algorithm
                 .commit_increment(&ci.master.surface, &ci.slave.surface);
             // β carries over: the next increment starts with the springs of

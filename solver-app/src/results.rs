@@ -377,6 +377,7 @@ pub fn write_summary(
                 "max_pressure": c.stats.max_pressure,
                 "contact_area": c.stats.contact_area,
                 "max_penetration": c.stats.max_penetration,
+                "augmentation_updates": c.augmentation_updates_run,
             })
         }).collect::<Vec<_>>(),
     });

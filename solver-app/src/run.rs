@@ -458,6 +458,13 @@ fn run_case_noting(
                     ) {
                         failure = Some(format!("after increment {k}: {e}"));
                     }
+                    for (i, penetration, height) in contacts.take_newly_augmented() {
+                        log.info(&format!(
+                            "increment {k}: [[contact]] {}: largest penetration {penetration:.3e} = {:.2e} of the slave cells' mean height {height:.3e}: augmented Lagrangian updates of the contact pressure from here on",
+                            contact_names(case, &[i]),
+                            penetration / height,
+                        ));
+                    }
                     // explicit coupling that converged only at its smallest
                     // relaxation: the next increments would grind the same
                     // way, so they are coupled implicitly

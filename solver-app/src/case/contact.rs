@@ -113,9 +113,10 @@ pub struct ContactSpec {
     /// Contact search.
     pub detection: Detection,
     /// `slip_history`: what the trial frictional traction remembers
-    /// (`"incremental"`, default: eq. 4.20, the slip of the increment only;
-    /// `"accumulated"`: also the elastic slip committed at the end of the
-    /// previous increment, so a stick traction persists across increments).
+    /// (`"incremental"`: eq. 4.20, the slip of the increment only;
+    /// `"accumulated"`, default: also the elastic slip committed at the end
+    /// of the previous increment, so a stick traction persists across
+    /// increments).
     pub slip_history: SlipHistory,
     /// `face_position`: where a contact face is when the gap is measured.
     pub face_position: FacePosition,

@@ -447,6 +447,9 @@ pub struct ContactInterface {
     /// The largest true penetration and the slave cells' mean height at the
     /// increment's first multiplier update (for the log).
     first_update: (f64, f64),
+    /// The largest true penetration at the increment's last multiplier
+    /// update ([`STALL_RATIO`]).
+    last_update_penetration: f64,
     augmented_shift: Vec<Vector>,
     /// λ/ε_n averaged onto the master faces (workspace).
     augmented_master: Vec<f64>,
@@ -497,7 +500,8 @@ impl ContactInterface {
     /// One Uzawa update of the augmented Lagrangian, λ ← p (the pressure
     /// λ + ε_n g⁻ of the last contact update), unless the largest true
     /// penetration is within `penetration` of the mean height of the slave
-    /// cells in contact or the increment has had its `max_updates`.
+    /// cells in contact, the increment has had its `max_updates`, or the
+    /// last update did not reduce the penetration ([`STALL_RATIO`]).
     /// Returns whether λ changed (the outer loop must go on).
     fn augment(&mut self, bodies: &[Body]) -> bool {
         let Some(aug) = self.augmentation else {
@@ -525,6 +529,12 @@ impl ContactInterface {
         if k == 0 || self.stats.max_penetration <= aug.penetration * h / k as f64 {
             return false;
         }
+        if self.augmentation_updates > 0
+            && self.stats.max_penetration > STALL_RATIO * self.last_update_penetration
+        {
+            return false;
+        }
+        self.last_update_penetration = self.stats.max_penetration;
         if self.augmentation_updates == 0 {
             self.first_update = (self.stats.max_penetration, h / k as f64);
         }
@@ -609,6 +619,23 @@ fn surface_material(body: &Body, surface: &Surface) -> FaceMaterial {
 /// only: Γ_c and Ω_c are averages over the *contacting* faces and cells
 /// (thesis §4.1.2), so a surface refined at the contact gets the penalty of
 /// its contact cells, not of its coarse far field.
+/// Augmented Lagrangian: an update of the multipliers must have brought the
+/// largest penetration under this fraction of the one at the previous
+/// update, or the increment makes no more updates (beyond the thesis). On a
+/// nearly incompressible body the per-face penetrations keep an odd–even
+/// part that Uzawa updates do not reduce: in the die drawing (ν = 0.495,
+/// penalty scale 1, tolerance 1e-3 of the cell height) the largest
+/// penetration stalled at 1.1–1.2 times the tolerance after five updates,
+/// every further update fed the multipliers' alternation along the land
+/// (neighbouring faces at 0.02 and 2.4 MPa where the pressure is 1.4 MPa),
+/// and the run diverged at 0.18 m, where the drawn material reaches the
+/// land, at every cut-back. Stopping there it runs to the end: steady force
+/// 626.0 N (−2.25 % against eq. 5.1), 1,338 outer iterations per
+/// increment. Where the updates converge (Hertz cylinder: 83 → 114 outer
+/// iterations, peak pressure −7.6 → −0.8 %; sphere on a block: largest
+/// penetration 2.8e-4 → 5.6e-6 m in two updates) nothing changes.
+const STALL_RATIO: f64 = 0.7;
+
 fn penalty_law(
     params: &PenaltyParams,
     master: &Surface,
@@ -923,6 +950,7 @@ impl ContactSet {
                 augmentation_updates: 0,
                 augmentation_updates_run: 0,
                 first_update: (0.0, 0.0),
+                last_update_penetration: 0.0,
                 augmented_shift: Vec::new(),
                 augmented_master: Vec::new(),
                 tractions: ContactTractions::new(),

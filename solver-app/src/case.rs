@@ -260,6 +260,13 @@ fn build(t: &Table<'_>, source: CaseSource) -> Res<Case> {
         }
     }
 
+    if bodies.iter().all(|b| b.rigid) {
+        // nothing to solve: a rigid body only follows its boundary motion
+        return Err(source.error(
+            "body[0].rigid",
+            "every body is rigid: at least one body must be deformable (rigid bodies are not solved, they only follow their boundary motion)",
+        ));
+    }
     let names: Vec<&str> = bodies.iter().map(|b| b.name.as_str()).collect();
     let contact_entry = t.get("contact");
     let mut contacts: Vec<ContactSpec> = Vec::new();

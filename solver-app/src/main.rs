@@ -4,7 +4,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use solver_app::case::load_case;
-use solver_app::run::{run_case, set_up, RunError, RunOptions};
+use solver_app::run::{run_case, set_up_with_contacts, RunError, RunOptions};
 
 /// Finite-volume solver for large-deformation frictional contact.
 #[derive(Parser)]
@@ -61,8 +61,8 @@ fn main() -> ExitCode {
                     return ExitCode::from(2);
                 }
             };
-            match set_up(&case) {
-                Ok(bodies) => {
+            match set_up_with_contacts(&case) {
+                Ok((bodies, _)) => {
                     print!("{}", solver_app::check::mesh_report(&case, &bodies));
                     println!("case is valid");
                     ExitCode::SUCCESS
@@ -84,8 +84,16 @@ fn main() -> ExitCode {
                     eprintln!("error: --threads must be at least 1");
                     return ExitCode::from(2);
                 }
+                // more workers than cores only adds switching (100,000
+                // took minutes to start a 27-cell case)
+                let cores = std::thread::available_parallelism().map_or(1, |c| c.get());
+                if n > cores {
+                    eprintln!(
+                        "note: --threads {n} is more than the {cores} cores here; using {cores}"
+                    );
+                }
                 let _ = rayon::ThreadPoolBuilder::new()
-                    .num_threads(n)
+                    .num_threads(n.min(cores))
                     .build_global();
             }
             let case = match load_case(&case) {

@@ -1,6 +1,6 @@
 //! `fvc run`: load, set up, solve every increment, write results.
 use std::io::IsTerminal;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use crate::case::{Case, Coupling, InputError, OnNonConvergence};
@@ -57,7 +57,28 @@ pub enum RunError {
     Output(String),
 }
 
-/// Loads every body's mesh and builds the model (shared by `run` and `check`).
+/// The results folder `dir` could not be created or written: an input
+/// error naming `--output` or the case's `output.directory`.
+fn unwritable(case: &Case, opts: &RunOptions, dir: &Path, e: &dyn std::fmt::Display) -> RunError {
+    let msg = format!("cannot write the results folder '{}': {e}", dir.display());
+    RunError::Input(match &opts.output {
+        Some(o) => InputError::new(
+            &case.source.path,
+            format!("--output {}: {msg}", o.display()),
+        ),
+        None => case.source.error("output.directory", msg),
+    })
+}
+
+/// The bodies of [`set_up`] and the contact pairs between them: everything
+/// `run` validates before it solves (shared by `run` and `check`).
+pub fn set_up_with_contacts(case: &Case) -> Result<(Vec<Body>, ContactSet), InputError> {
+    let bodies = set_up(case)?;
+    let contacts = ContactSet::new(case, &bodies)?;
+    Ok((bodies, contacts))
+}
+
+/// Loads every body's mesh and builds the model.
 pub fn set_up(case: &Case) -> Result<Vec<Body>, InputError> {
     let mut meshes = Vec::with_capacity(case.bodies.len());
     for (i, b) in case.bodies.iter().enumerate() {
@@ -111,8 +132,7 @@ fn run_case_noting(
     note: Option<&str>,
 ) -> Result<RunOutcome, RunError> {
     let start = Instant::now();
-    let mut bodies = set_up(case)?;
-    let mut contacts = ContactSet::new(case, &bodies)?;
+    let (mut bodies, mut contacts) = set_up_with_contacts(case)?;
     contacts.prepare_conditions(&mut bodies);
     let mut solver = SegregatedSolver::new(&bodies, &case.solver);
     let mut failure: Option<String> = None;
@@ -165,23 +185,26 @@ fn run_case_noting(
             .clone()
             .unwrap_or_else(|| case.output.directory.clone());
         let dir = base.join(&case.title);
-        std::fs::create_dir_all(&dir)
-            .map_err(|e| RunError::Output(format!("{}: {e}", dir.display())))?;
+        std::fs::create_dir_all(&dir).map_err(|e| unwritable(case, opts, &dir, &e))?;
         Some(dir)
     };
     let io_err = |e: std::io::Error| RunError::Output(e.to_string());
-    let mut log = match &dir {
-        Some(d) => RunLog::create(d).map_err(io_err)?,
-        None => RunLog::none(),
-    };
-    let mut history = match &dir {
-        Some(d) => Some(History::create(d, &bodies, &contacts).map_err(io_err)?),
-        None => None,
-    };
     let out_err = |e: crate::output::OutputError| RunError::Output(e.to_string());
-    let mut fields = match &dir {
-        Some(d) => Some(FieldOutput::create(d, &case.title, &bodies).map_err(out_err)?),
-        None => None,
+    // the result files are created before the first increment: a folder
+    // that cannot take them is the input's (exit 2), not the solver's
+    let (mut log, mut history, mut fields) = match &dir {
+        Some(d) => (
+            RunLog::create(d).map_err(|e| unwritable(case, opts, d, &e))?,
+            Some(
+                History::create(d, &bodies, &contacts)
+                    .map_err(|e| unwritable(case, opts, d, &e))?,
+            ),
+            Some(
+                FieldOutput::create(d, &case.title, &bodies)
+                    .map_err(|e| unwritable(case, opts, d, &e))?,
+            ),
+        ),
+        None => (RunLog::none(), None, None),
     };
     let columns = history_columns(&bodies, &contacts);
     let columns: Vec<&str> = columns.iter().map(|s| s.as_str()).collect();

@@ -566,7 +566,7 @@ fn material_forms() {
 #[test]
 fn boundary_forms_in_file_order() {
     let text = with_body(
-        r#"rigid = true
+        r#"rigid = false
 [body.boundary.top]
 type = "displacement"
 value = [0.0, -0.02, 0]
@@ -603,7 +603,7 @@ value = 100e6"#,
     );
     let c = parse(&text);
     let b = &c.bodies[0];
-    assert!(b.rigid);
+    assert!(!b.rigid);
     let names: Vec<&str> = b.boundary.iter().map(|(n, _)| n.as_str()).collect();
     assert_eq!(
         names,
@@ -1035,9 +1035,20 @@ fn case_level_errors() {
     let e = fail(&MIN.replace("[[body]]", "[analysis]\nkind = \"dynamic\"\n[[body]]"));
     assert_eq!(e.key.as_deref(), Some("body[0].material.rho"));
     assert!(e.line.is_some());
+    // a rigid body needs no density; a deformable one beside it does
     let rigid =
         MIN.replace("[[body]]", "[analysis]\nkind = \"dynamic\"\n[[body]]") + "rigid = true\n";
-    assert!(parse_case(&rigid, Path::new("c.toml")).is_ok());
+    let with_deformable = format!(
+        "{rigid}[[body]]\nname = \"other\"\nmesh = {{ generator = \"box\", min = [0, 2, 0], max = [1, 3, 0.1], cells = [1, 1, 1] }}\nmaterial = {{ model = \"linear-elastic\", E = 200.0, nu = 0.3, rho = 1.0 }}\n"
+    );
+    assert!(parse_case(&with_deformable, Path::new("c.toml")).is_ok());
+    // every body rigid: nothing to solve
+    let e = fail(&rigid);
+    assert_eq!(e.key.as_deref(), Some("body[0].rigid"), "{e}");
+    assert!(
+        e.message.contains("at least one body must be deformable"),
+        "{e}"
+    );
     let e = fail(&MIN.replace("[[body]]", "[analysis]\nkind = \"modal\"\n[[body]]"));
     assert!(e.message.contains("\"static\", \"dynamic\""), "{e}");
     let e = fail(&MIN.replace("[[body]]", "[analysis]\nstrain = \"finite\"\n[[body]]"));

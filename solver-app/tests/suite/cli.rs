@@ -236,6 +236,129 @@ coupling = "implicit"
     );
 }
 
+/// What `run` refuses before it solves, `check` refuses too: a contact
+/// patch that does not exist (found where the contact pairs are built).
+#[test]
+fn check_refuses_a_contact_that_run_refuses() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = GOOD.to_string()
+        + r#"
+[[body]]
+name = "plate"
+rigid = true
+mesh = { generator = "box", min = [0, 1, 0], max = [1, 1.2, 1], cells = [2, 1, 2] }
+material = { model = "linear-elastic", E = 200.0, nu = 0.3 }
+[[contact]]
+master = "plate/ymin"
+slave = "block/bottom"
+"#;
+    let p = write(dir.path(), "case.toml", case.as_bytes());
+    let (code, out, err) = fvc(&["check", p.to_str().unwrap()]);
+    assert_eq!(code, 2, "{out}{err}");
+    assert!(
+        err.contains("contact[0].slave") && err.contains("no patch 'bottom'"),
+        "{err}"
+    );
+    assert!(!out.contains("case is valid"), "{out}");
+}
+
+/// Loads on a rigid body act on nothing (it is not solved), and a case of
+/// rigid bodies alone has nothing to solve: both are input errors.
+#[test]
+fn loads_on_rigid_bodies_and_all_rigid_cases_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let rigid_block = GOOD.replace("[body.boundary.ymin]", "rigid = true\n[body.boundary.ymin]");
+    expect_input_error(
+        dir.path(),
+        rigid_block.as_bytes(),
+        &["body[0].rigid", "at least one body must be deformable"],
+    );
+    let case = GOOD.to_string()
+        + r#"
+[[body]]
+name = "plate"
+rigid = true
+mesh = { generator = "box", min = [0, 1, 0], max = [1, 1.2, 1], cells = [2, 1, 2] }
+material = { model = "linear-elastic", E = 200.0, nu = 0.3 }
+[body.boundary.xmax]
+type = "traction"
+value = [5.0, 0, 0]
+"#;
+    expect_input_error(
+        dir.path(),
+        case.as_bytes(),
+        &[
+            "body[1].boundary.xmax",
+            "\"traction\" needs a deformable body",
+        ],
+    );
+    let pressure = case.replace(
+        "type = \"traction\"\nvalue = [5.0, 0, 0]",
+        "type = \"pressure\"\nvalue = 1.0",
+    );
+    expect_input_error(
+        dir.path(),
+        pressure.as_bytes(),
+        &[
+            "body[1].boundary.xmax",
+            "\"pressure\" needs a deformable body",
+        ],
+    );
+}
+
+/// A results folder that cannot be created is the input's fault (exit 2),
+/// named by where it came from: `--output` or `output.directory`.
+#[test]
+fn an_unwritable_results_folder_is_an_input_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = write(dir.path(), "case.toml", GOOD.as_bytes());
+    let file = write(dir.path(), "a-file", b"not a folder");
+    let inside = file.join("out");
+    let (code, _, err) = fvc(&[
+        "run",
+        p.to_str().unwrap(),
+        "--output",
+        inside.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("--output") && err.contains("cannot write the results folder"),
+        "{err}"
+    );
+    let case = format!(
+        "{GOOD}[output]\ndirectory = {:?}\n",
+        inside.to_str().unwrap()
+    );
+    let p = write(dir.path(), "case.toml", case.as_bytes());
+    let (code, _, err) = fvc(&["run", p.to_str().unwrap(), "--quiet"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("output.directory") && err.contains("case.toml:"),
+        "{err}"
+    );
+}
+
+/// `--threads` beyond the cores is capped (100,000 workers took minutes to
+/// start), with a note.
+#[test]
+fn more_threads_than_cores_are_capped() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = write(dir.path(), "case.toml", GOOD.as_bytes());
+    let out = dir.path().join("out");
+    let (code, _, err) = fvc(&[
+        "run",
+        p.to_str().unwrap(),
+        "--output",
+        out.to_str().unwrap(),
+        "--threads",
+        "100000",
+        "--quiet",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("note: --threads 100000"), "{err}");
+}
+
 #[test]
 fn unconstrained_body_is_an_input_error() {
     let dir = tempfile::tempdir().unwrap();
@@ -573,6 +696,61 @@ type = "empty"
             u[[c, 1]]
         );
         assert_eq!(u[[c, 2]], 0.0);
+    }
+    // plane strain: σ_zz = ν σ_xx
+    let stress = |file: &hdf5::File| {
+        file.dataset("time/1/plate/stress")
+            .unwrap()
+            .read_2d::<f64>()
+            .unwrap()
+    };
+    let s = stress(&file);
+    for c in 0..3 {
+        assert!((s[[c, 0]] - 1.0).abs() < 1e-6, "σ_xx {}", s[[c, 0]]);
+        assert!((s[[c, 2]] - nu).abs() < 1e-6, "σ_zz {}", s[[c, 2]]);
+    }
+    // plane stress: ε_xx = σ/E, ε_yy = −ν σ/E, and nothing out of the
+    // plane (the material's λ* leaves a σ_zz of its own, not reported)
+    let plane_stress = case.replace("nu = 0.3 }", "nu = 0.3, plane_stress = true }");
+    drop(file);
+    let (code, outdir, err) = run_quietly(dir.path(), plane_stress.as_bytes());
+    assert_eq!(code, 0, "{err}");
+    let file = hdf5::File::open(outdir.join("plate").join("plate.h5")).unwrap();
+    let u = file
+        .dataset("time/1/plate/displacement")
+        .unwrap()
+        .read_2d::<f64>()
+        .unwrap();
+    let (exx, eyy) = (1.0 / e, -nu / e);
+    for (c, (x, y)) in [(2.0 / 3.0, 1.0 / 3.0), (1.0 / 3.0, 2.0 / 3.0), (1.5, 0.5)]
+        .into_iter()
+        .enumerate()
+    {
+        assert!(
+            (u[[c, 0]] - exx * x).abs() < 1e-6 * exx,
+            "cell {c}: u_x {}",
+            u[[c, 0]]
+        );
+        assert!(
+            (u[[c, 1]] - eyy * y).abs() < 1e-6 * exx,
+            "cell {c}: u_y {}",
+            u[[c, 1]]
+        );
+    }
+    let s = stress(&file);
+    let von_mises = file
+        .dataset("time/1/plate/von_mises")
+        .unwrap()
+        .read_1d::<f64>()
+        .unwrap();
+    for c in 0..3 {
+        assert!((s[[c, 0]] - 1.0).abs() < 1e-6, "σ_xx {}", s[[c, 0]]);
+        assert_eq!(s[[c, 2]], 0.0, "σ_zz");
+        assert!(
+            (von_mises[c] - 1.0).abs() < 1e-6,
+            "von Mises {}",
+            von_mises[c]
+        );
     }
 }
 

@@ -103,6 +103,39 @@ impl ForceControl {
     }
 }
 
+/// `empty` marks the front and back faces of a 2-D body, one cell thick:
+/// every cell must have exactly two faces on `empty` patches (a thicker
+/// body, or one side marked only, would otherwise be solved as plane
+/// strain without a word). Returns the first `empty` patch and why.
+fn check_one_cell_thick(
+    mesh: &PolyMesh,
+    patch_specs: &[Option<BoundarySpec>],
+) -> Result<(), (usize, String)> {
+    let empty: Vec<usize> = (0..mesh.patches.len())
+        .filter(|&p| matches!(patch_specs[p], Some(BoundarySpec::Empty)))
+        .collect();
+    let Some(&first) = empty.first() else {
+        return Ok(());
+    };
+    let mut count = vec![0u8; mesh.n_cells];
+    for &p in &empty {
+        for f in mesh.patches[p].faces() {
+            let c = mesh.owner[f] as usize;
+            count[c] = count[c].saturating_add(1);
+        }
+    }
+    match count.iter().position(|&k| k != 2) {
+        None => Ok(()),
+        Some(c) => Err((
+            first,
+            format!(
+                "type = \"empty\" marks the front and back faces of a 2-D body one cell thick, but cell {c} has {} of its faces on empty patches, not 2 (a body several cells thick is 3-D: give its faces another condition)",
+                count[c]
+            ),
+        )),
+    }
+}
+
 /// The axis every face of the `empty` patches is normal to (a 2-D body's
 /// out-of-plane axis), if there are such patches and they agree.
 fn empty_axis(
@@ -485,6 +518,12 @@ fn build_body(
         }
         patch_specs[pi] = Some(bc.clone());
     }
+    check_one_cell_thick(&mesh, &patch_specs).map_err(|(p, msg)| {
+        src.error(
+            &format!("body[{bi}].boundary.{}", mesh.patches[p].name),
+            msg,
+        )
+    })?;
     let wedge_patches: Vec<usize> = patch_specs
         .iter()
         .enumerate()

@@ -306,6 +306,35 @@ value = [5.0, 0, 0]
     );
 }
 
+/// `empty` is for the front and back of a body one cell thick: on a body
+/// four cells thick, or on one side only, it is refused (it would solve a
+/// 3-D body as plane strain).
+#[test]
+fn empty_needs_a_body_one_cell_thick() {
+    let dir = tempfile::tempdir().unwrap();
+    let both = format!(
+        "{GOOD}[body.boundary.zmin]\ntype = \"empty\"\n[body.boundary.zmax]\ntype = \"empty\"\n"
+    );
+    expect_input_error(
+        dir.path(),
+        both.as_bytes(),
+        &[
+            "body[0].boundary.zmin",
+            "one cell thick",
+            "has 1 of its faces",
+        ],
+    );
+    let thin = both.replace("cells = [4, 4, 4]", "cells = [4, 4, 1]");
+    let (code, _, err) = run_quietly(dir.path(), thin.as_bytes());
+    assert_eq!(code, 0, "{err}");
+    let one_side = thin.replace("[body.boundary.zmax]\ntype = \"empty\"\n", "");
+    expect_input_error(
+        dir.path(),
+        one_side.as_bytes(),
+        &["body[0].boundary.zmin", "not 2"],
+    );
+}
+
 /// A results folder that cannot be created is the input's fault (exit 2),
 /// named by where it came from: `--output` or `output.directory`.
 #[test]

@@ -22,11 +22,14 @@ use fv_mesh::{Real, Surface, Vector};
 ///
 /// 1. gap at every slave point by closest-point projection (eq. 2.34) onto
 ///    the master faces paired with the point's faces, measured along the
-///    master face normal; a point whose closest point lies on the border of
-///    the master surface, or that faces no master face, has no gap;
+///    master face normal; a point that faces no master face has no gap,
+///    nor one whose closest point lies on the border of the master surface
+///    farther than [`BORDER_REACH`] (beyond the thesis: nearer, it keeps
+///    the gap to the border face's plane);
 /// 2. slave face normal traction `−(1/n_p) Σ_p ε_n ⟨−g_p⟩ n_s` (eq. 4.11,
 ///    unit point weights; the printed `1/|Γ_bs|` factor is dimensionally a
-///    misprint and is not applied, as in solids4foam);
+///    misprint and is not applied, as in solids4foam), times the face's
+///    GGI coverage where a point lies beyond the master's border;
 /// 3. friction at the slave face centres with the slip of eq. 4.12, the
 ///    master increment interpolated by normalised GGI weights (eq. 4.6);
 /// 4. master tractions `t_m = −Σ_k ω_{j,k} t_s,k` (eq. 4.5), normal and
@@ -64,6 +67,12 @@ pub struct Pointwise {
     point_gap: Vec<Real>,
     /// Master face of each slave point's foot (`u32::MAX`: none).
     point_master: Vec<u32>,
+    /// The slave point lies beyond the master surface's border
+    /// ([`BORDER_REACH`]).
+    point_beyond: Vec<bool>,
+    /// GGI coverage of each slave face reaching beyond the master's border
+    /// (1 for the others).
+    coverage: Vec<Real>,
     /// Gaps of the points of one slave face with the face shifts.
     face_gaps: Vec<Real>,
     /// Smallest gap at the points of each slave face (+∞: none), for the
@@ -83,15 +92,24 @@ pub struct Pointwise {
     clipped_values: Vec<Real>,
 }
 
-/// Width, in master face sizes (√area), of the band beyond the master
-/// surface's border over which a slave point's penetration fades to
-/// nothing (beyond the thesis). Two blocks of equal width, pressed
-/// together, bulge alike: the slave's edge points lie on the master's
-/// border edges, 1e-9 to 1e-5 of a face inside or outside from one outer
-/// iteration to the next, and a sharp border switched their pressure on
-/// and off (twisting blocks: 263 outer iterations per increment, and the
-/// last, where the edges align again, never converged).
-const BORDER_RAMP: Real = 0.01;
+/// A slave point beyond the master surface's border keeps the gap to the
+/// plane of the border face it is closest to, as long as it lies within
+/// this many face sizes (√area; the larger of that master face and the
+/// point's slave faces) of the border; its faces' pressure is then scaled
+/// by the part of the face over the master ([`GgiWeights::slave_coverage`],
+/// eq. 4.9). Beyond the thesis, whose points there have no gap and count
+/// as open in the face's mean (eq. 4.11): a slave edge that overhung the
+/// master's by 1.8 % of a face (two blocks of different Poisson's ratio
+/// pressed together) lost half its last face's pressure (1.25 and 0.80
+/// times the uniform pressure on the last two faces, contact area −10 %).
+/// Scaled by the coverage, the pressure varies continuously as an edge
+/// point crosses the border (equal blocks, whose edges lie on each other
+/// within 1e-9 to 1e-5 of a face from one outer iteration to the next,
+/// switched it on and off: twisting blocks never converged its last
+/// increment).
+///
+/// [`GgiWeights::slave_coverage`]: crate::ggi::GgiWeights::slave_coverage
+const BORDER_REACH: Real = 1.0;
 
 /// A point lies on a symmetry or wedge plane within this fraction of the
 /// master face's size (√area).
@@ -173,6 +191,8 @@ impl Pointwise {
         self.point_normal.resize(slave.n_points(), Vector::zeros());
         self.point_master.clear();
         self.point_master.resize(slave.n_points(), u32::MAX);
+        self.point_beyond.clear();
+        self.point_beyond.resize(slave.n_points(), false);
         for p in 0..slave.n_points() {
             let x = slave.points[p];
             if !x.iter().all(|v| v.is_finite()) {
@@ -186,8 +206,8 @@ impl Pointwise {
             self.candidates.sort_unstable();
             self.candidates.dedup();
             let np = slave.point_normals[p];
-            // (distance², gap, on border, face)
-            let mut best: Option<(Real, Real, bool, usize)> = None;
+            // (distance², gap, on border, face, closest point)
+            let mut best: Option<(Real, Real, bool, usize, Vector)> = None;
             for &m in &self.candidates {
                 let mu = m as usize;
                 if !valid_face(master, mu) {
@@ -204,28 +224,31 @@ impl Pointwise {
                 // ties (a point over a shared edge) go to the face containing the projection
                 let better = match best {
                     None => true,
-                    Some((bd, _, _, _)) => d2 < bd * (1.0 - 1e-12) || (d2 <= bd && side.is_none()),
+                    Some((bd, ..)) => d2 < bd * (1.0 - 1e-12) || (d2 <= bd && side.is_none()),
                 };
                 if better {
-                    best = Some((d2, (x - q).dot(&nm), border, mu));
+                    best = Some((d2, (x - q).dot(&nm), border, mu, q));
                 }
             }
-            if let Some((d2, g, border, m)) = best {
-                // beyond the master surface's border: no gap, but over a
-                // ramp of BORDER_RAMP face sizes the penetration fades
-                let weight = if border && !self.on_symmetry_plane(master, m, &x) {
+            if let Some((d2, g, border, m, q)) = best {
+                // beyond the master surface's border: the gap to the border
+                // face's plane within BORDER_REACH, the faces scaled by
+                // their coverage (step 2)
+                let beyond = border && !self.on_symmetry_plane(master, m, &x);
+                if beyond {
                     // the foot's distance across the face plane
                     let outside = (d2 - g * g).max(0.0).sqrt();
-                    let weight = 1.0 - outside / (BORDER_RAMP * master.face_mag[m].sqrt());
-                    if !(weight > 0.0) {
+                    let size = slave
+                        .faces_of_point(p)
+                        .iter()
+                        .map(|&f| slave.face_mag[f as usize].sqrt())
+                        .fold(master.face_mag[m].sqrt(), Real::max);
+                    if !(outside <= BORDER_REACH * size) {
                         continue;
                     }
-                    weight
-                } else {
-                    1.0
-                };
-                let faded = |g: Real| if g < 0.0 { g * weight } else { g };
-                self.point_gap[p] = faded(g);
+                }
+                self.point_gap[p] = g;
+                self.point_beyond[p] = beyond;
                 self.point_normal[p] = master.face_normals[m];
                 self.point_master[p] = m as u32;
                 let Some(sm) = self.smoothing.as_ref().filter(|_| smooth) else {
@@ -234,8 +257,15 @@ impl Pointwise {
                 if sm.clear_of(m, g) || sm.flat_around(m) {
                     continue;
                 }
-                if let Some(sg) = sm.gap_inside(&x, m) {
-                    self.point_gap[p] = faded(sg.gap);
+                // beyond the border: the smoothed gap where the point's
+                // normal line meets the border (flat, the same gap)
+                let probe = if beyond {
+                    q + master.face_normals[m] * g
+                } else {
+                    x
+                };
+                if let Some(sg) = sm.gap_inside(&probe, m) {
+                    self.point_gap[p] = sg.gap;
                     self.point_normal[p] = sg.normal;
                 }
             }
@@ -359,6 +389,8 @@ impl ContactAlgorithm for Pointwise {
         // 2: slave normal traction (eq. 4.11), gap, contact fraction
         self.min_gaps.clear();
         self.min_gaps.resize(ns, Real::INFINITY);
+        self.coverage.clear();
+        self.coverage.resize(ns, 1.0);
         let mut contact_area = 0.0;
         let mut max_penetration: Real = 0.0;
         for s in 0..ns {
@@ -367,7 +399,15 @@ impl ContactAlgorithm for Pointwise {
             }
             self.shifted_face_gaps(slave, s);
             let fp = slave.face(s);
-            let inv = 1.0 / fp.len() as Real;
+            // a face reaching beyond the master's border presses with the
+            // part of it over the master (BORDER_REACH)
+            let coverage = if fp.iter().any(|&q| self.point_beyond[q as usize]) {
+                out.ggi.slave_coverage(s).min(1.0)
+            } else {
+                1.0
+            };
+            self.coverage[s] = coverage;
+            let inv = coverage / fp.len() as Real;
             let p = self
                 .face_gaps
                 .iter()
@@ -401,7 +441,7 @@ impl ContactAlgorithm for Pointwise {
             if p > 0.0 {
                 out.slave.pressure[s] = p;
                 out.slave.normal_traction[s] = t;
-                let beta = self.slave_fraction(slave, s);
+                let beta = self.slave_fraction(slave, s) * coverage;
                 out.slave.contact_fraction[s] = beta;
                 contact_area += beta * slave.face_mag[s];
             }
@@ -446,15 +486,28 @@ impl ContactAlgorithm for Pointwise {
             self.state.pending_slave[s] = ff.elastic_slip;
         }
 
-        // 4: transfer to the master (eq. 4.5)
+        // 4: transfer to the master (eq. 4.5); a face partly beyond the
+        // master's border passes on the traction of its covered part, so
+        // that the master receives the force the slave face carries
+        let covered = |(t, &c): (&Vector, &Real)| if c > 0.0 { -t / c } else { Vector::zeros() };
         self.slave_values.clear();
-        self.slave_values
-            .extend(out.slave.normal_traction.iter().map(|t| -t));
+        self.slave_values.extend(
+            out.slave
+                .normal_traction
+                .iter()
+                .zip(&self.coverage)
+                .map(covered),
+        );
         out.ggi
             .to_master(&self.slave_values, &mut out.master.normal_traction, false);
         self.slave_values.clear();
-        self.slave_values
-            .extend(out.slave.tangential_traction.iter().map(|t| -t));
+        self.slave_values.extend(
+            out.slave
+                .tangential_traction
+                .iter()
+                .zip(&self.coverage)
+                .map(covered),
+        );
         out.ggi.to_master(
             &self.slave_values,
             &mut out.master.tangential_traction,

@@ -599,6 +599,44 @@ impl SolidMomentum {
         any
     }
 
+    /// Adds to `rhs` (component c) the part of the `symmetry` and
+    /// `normal-displacement` faces' condition n·u_b = v that the
+    /// component's diagonal (a n_c², [`Self::add_boundary_diagonal`]) leaves
+    /// out: −K|Γ|/|d_n| n_c Σ_{d≠c} n_d e_d of the owner's cell values `e`
+    /// of the other components. With it, sweeps over the components solve
+    /// the vector Laplacian whose boundary holds the face on an inclined
+    /// plane; returns whether any such face is inclined (not normal to an
+    /// axis), i.e. whether the term can be non-zero.
+    pub fn add_inclined_plane_coupling(
+        &self,
+        mesh: &PolyMesh,
+        geom: &MeshGeometry,
+        c: usize,
+        e: &[Vector],
+        rhs: &mut [f64],
+    ) -> bool {
+        let mut inclined = false;
+        for (p, cond) in mesh.patches.iter().zip(&self.conditions) {
+            if !matches!(
+                cond,
+                PatchCondition::Symmetry | PatchCondition::NormalDisplacement(_)
+            ) {
+                continue;
+            }
+            for f in p.faces() {
+                let n = geom.face_normals[f];
+                if n.iter().filter(|x| x.abs() > 1e-12).count() < 2 {
+                    continue;
+                }
+                inclined = true;
+                let o = mesh.owner[f] as usize;
+                let cross: f64 = (0..3).filter(|&d| d != c).map(|d| n[d] * e[o][d]).sum();
+                rhs[o] -= self.face_coefficient(geom, f) * n[c] * cross;
+            }
+        }
+        inclined
+    }
+
     /// Adds the temporal diagonal m_P/Δt² (eq. 3.11) to `diag` (no-op for
     /// static bodies).
     pub fn add_inertia_diagonal(&self, diag: &mut [f64]) {

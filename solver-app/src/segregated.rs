@@ -277,6 +277,18 @@ fn make_solver(s: &LinearSettings, n: usize) -> Box<dyn LinearSolver + Send> {
 const HARMONIC_START_TOLERANCE: f64 = 1e-6;
 /// Most warm-started linear solves spent on it.
 const HARMONIC_START_SOLVES: usize = 8;
+/// Sweeps over the components of the harmonic start where `symmetry` or
+/// `normal-displacement` faces lie on inclined planes, whose condition
+/// n·u = v couples the components
+/// ([`fv_discretise::SolidMomentum::add_inclined_plane_coupling`]), and the
+/// relative change of a sweep at which they stop. With one sweep the
+/// start held the plane only in part: a neo-Hookean bar on a mesh rotated
+/// off the axes, stretched 5 % in its first increment by a
+/// normal-displacement with symmetry planes at its other end, diverged in
+/// the third outer iteration (the same bar along the axes: 21 outer
+/// iterations).
+const HARMONIC_START_SWEEPS: usize = 30;
+const HARMONIC_SWEEP_TOLERANCE: f64 = 1e-3;
 
 /// Directions (0, 1, 2) that are not solved: the out-of-plane axis of a
 /// 2-D model (every `empty` face normal along it) and the circumferential
@@ -693,49 +705,82 @@ impl SegregatedSolver {
         if !free.iter().any(|&f| f) {
             return;
         }
-        for c in 0..3 {
-            let Some(mi) = self.component_matrix[c] else {
-                continue;
-            };
-            self.rhs.iter_mut().for_each(|r| *r = 0.0);
-            let mut any = false;
-            for (b, _) in bodies.iter().zip(&free).filter(|(_, &f)| f) {
-                let rows = &mut self.rhs[b.offset..b.offset + b.mesh.n_cells];
-                any |= b
-                    .momentum
-                    .add_prescribed_step_source(&b.mesh, &b.geom, c, rows);
-            }
-            if !any {
-                continue;
-            }
-            // warm-started solves: each reduces the residual by the outer
-            // iterations' linear tolerance, until HARMONIC_START_TOLERANCE
-            self.x.iter_mut().for_each(|x| *x = 0.0);
-            let start = Instant::now();
-            let mut first = None;
-            let mut ok = true;
-            for _ in 0..HARMONIC_START_SOLVES {
-                match self.solvers[mi].solve(&self.matrices[mi], &self.rhs, &mut self.x) {
-                    Ok(info) => {
-                        let r0 = *first.get_or_insert(info.initial_residual);
-                        if info.final_residual <= HARMONIC_START_TOLERANCE * r0 {
+        // the extension's cell values, all bodies (once per attempt of the
+        // first increment: allocated here)
+        let n: usize = bodies
+            .iter()
+            .filter(|b| !b.rigid)
+            .map(|b| b.mesh.n_cells)
+            .sum();
+        let mut e = vec![Vector::zeros(); self.x.len().max(n)];
+        for sweep in 0..HARMONIC_START_SWEEPS {
+            let mut inclined = false;
+            let mut change: f64 = 0.0;
+            let mut size: f64 = 0.0;
+            for c in 0..3 {
+                let Some(mi) = self.component_matrix[c] else {
+                    continue;
+                };
+                self.rhs.iter_mut().for_each(|r| *r = 0.0);
+                let mut any = false;
+                for (b, _) in bodies.iter().zip(&free).filter(|(_, &f)| f) {
+                    let rows = &mut self.rhs[b.offset..b.offset + b.mesh.n_cells];
+                    any |= b
+                        .momentum
+                        .add_prescribed_step_source(&b.mesh, &b.geom, c, rows);
+                    let cells = &e[b.offset..b.offset + b.mesh.n_cells];
+                    inclined |= b
+                        .momentum
+                        .add_inclined_plane_coupling(&b.mesh, &b.geom, c, cells, rows);
+                }
+                if !any && !inclined {
+                    continue;
+                }
+                // warm-started solves: each reduces the residual by the outer
+                // iterations' linear tolerance, until HARMONIC_START_TOLERANCE
+                for (x, v) in self.x.iter_mut().zip(&e) {
+                    *x = v[c];
+                }
+                let start = Instant::now();
+                let mut first = None;
+                let mut ok = true;
+                for _ in 0..HARMONIC_START_SOLVES {
+                    match self.solvers[mi].solve(&self.matrices[mi], &self.rhs, &mut self.x) {
+                        Ok(info) => {
+                            let r0 = *first.get_or_insert(info.initial_residual);
+                            if info.final_residual <= HARMONIC_START_TOLERANCE * r0 {
+                                break;
+                            }
+                        }
+                        Err(_) => {
+                            ok = false;
                             break;
                         }
                     }
-                    Err(_) => {
-                        ok = false;
-                        break;
-                    }
+                }
+                self.times.lap(Phase::LinearSolve, start);
+                if !ok || !self.x.iter().all(|x| x.is_finite()) {
+                    // a failed solve leaves the cells where they are
+                    return;
+                }
+                for (v, &x) in e.iter_mut().zip(&self.x) {
+                    change = change.max((x - v[c]).abs());
+                    size = size.max(x.abs());
+                    v[c] = x;
                 }
             }
-            self.times.lap(Phase::LinearSolve, start);
-            if !ok || !self.x.iter().all(|x| x.is_finite()) {
-                continue;
+            // without inclined planes the components are independent: one
+            // sweep is the extension
+            if !inclined
+                || change <= HARMONIC_SWEEP_TOLERANCE * size
+                || sweep + 1 == HARMONIC_START_SWEEPS
+            {
+                break;
             }
-            for (b, _) in bodies.iter_mut().zip(&free).filter(|(_, &f)| f) {
-                for (u, x) in b.momentum.u.iter_mut().zip(&self.x[b.offset..]) {
-                    u[c] += x;
-                }
+        }
+        for (b, _) in bodies.iter_mut().zip(&free).filter(|(_, &f)| f) {
+            for (u, v) in b.momentum.u.iter_mut().zip(&e[b.offset..]) {
+                *u += v;
             }
         }
     }

@@ -30,7 +30,26 @@ pub fn mesh_report(case: &Case, bodies: &[Body]) -> String {
         let _ = writeln!(s, "  patches ({}):", b.mesh.patches.len());
         for (p, spec) in b.mesh.patches.iter().zip(&b.patch_specs) {
             let area: f64 = p.faces().map(|f| b.geom.face_mag[f]).sum();
-            let cond = spec.as_ref().map(spec_name).unwrap_or("traction-free");
+            // a contact patch carries the contact traction
+            let contact: Vec<String> = case
+                .contacts
+                .iter()
+                .enumerate()
+                .flat_map(|(i, c)| {
+                    [("master", &c.master), ("slave", &c.slave)]
+                        .into_iter()
+                        .filter(|(_, (body, patch))| *body == b.name && *patch == p.name)
+                        .map(move |(side, _)| format!("contact[{i}] {side}"))
+                })
+                .collect();
+            let cond = if contact.is_empty() {
+                spec.as_ref()
+                    .map(spec_name)
+                    .unwrap_or("traction-free")
+                    .to_owned()
+            } else {
+                contact.join(", ")
+            };
             let _ = writeln!(
                 s,
                 "    {:<24} {:>8} faces  area {:.6e}  {}",

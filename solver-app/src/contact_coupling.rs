@@ -614,11 +614,6 @@ fn surface_material(body: &Body, surface: &Surface) -> FaceMaterial {
     (k, g, len)
 }
 
-/// Penalty parameters (eqs. 4.4a/4.4b) from the faces of both deformable
-/// surfaces, or, with `pairs`, from the faces that have a candidate partner
-/// only: Γ_c and Ω_c are averages over the *contacting* faces and cells
-/// (thesis §4.1.2), so a surface refined at the contact gets the penalty of
-/// its contact cells, not of its coarse far field.
 /// Augmented Lagrangian: an update of the multipliers must have brought the
 /// largest penetration under this fraction of the one at the previous
 /// update, or the increment makes no more updates (beyond the thesis). On a
@@ -636,6 +631,11 @@ fn surface_material(body: &Body, surface: &Surface) -> FaceMaterial {
 /// penetration 2.8e-4 → 5.6e-6 m in two updates) nothing changes.
 const STALL_RATIO: f64 = 0.7;
 
+/// Penalty parameters (eqs. 4.4a/4.4b) from the faces of both deformable
+/// surfaces, or, with `pairs`, from the faces that have a candidate partner
+/// only: Γ_c and Ω_c are averages over the *contacting* faces and cells
+/// (thesis §4.1.2), so a surface refined at the contact gets the penalty of
+/// its contact cells, not of its coarse far field.
 fn penalty_law(
     params: &PenaltyParams,
     master: &Surface,

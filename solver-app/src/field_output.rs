@@ -152,16 +152,13 @@ impl FieldOutput {
                         t[(1, 2)],
                         t[(0, 2)],
                     ];
-                    if let Some(d) = b.plane_stress_axis {
+                    if b.plane_stress {
                         // plane stress: nothing acts out of the plane
                         // (components xx yy zz xy yz xz)
-                        let zeroed: &[usize] = match d {
-                            0 => &[0, 3, 5],
-                            1 => &[1, 3, 4],
-                            _ => &[2, 4, 5],
-                        };
-                        for &c in zeroed {
-                            s[c] = 0.0;
+                        for (d, zeroed) in [[0, 3, 5], [1, 3, 4], [2, 4, 5]].iter().enumerate() {
+                            if b.momentum.unsolved[d] {
+                                zeroed.iter().for_each(|&c| s[c] = 0.0);
+                            }
                         }
                     }
                 }

@@ -136,33 +136,6 @@ fn check_one_cell_thick(
     }
 }
 
-/// The axis every face of the `empty` patches is normal to (a 2-D body's
-/// out-of-plane axis), if there are such patches and they agree.
-fn empty_axis(
-    mesh: &PolyMesh,
-    geom: &MeshGeometry,
-    patch_specs: &[Option<BoundarySpec>],
-) -> Option<usize> {
-    let mut along = [true; 3];
-    let mut seen = false;
-    for (p, spec) in mesh.patches.iter().zip(patch_specs) {
-        if !matches!(spec, Some(BoundarySpec::Empty)) {
-            continue;
-        }
-        for f in p.faces() {
-            seen = true;
-            let n = geom.face_normals[f];
-            for (d, a) in along.iter_mut().enumerate() {
-                *a &= n[d].abs() > 1.0 - 1e-6;
-            }
-        }
-    }
-    if !seen {
-        return None;
-    }
-    along.iter().position(|&a| a)
-}
-
 /// One body of the case.
 #[derive(Debug)]
 pub struct Body {
@@ -188,11 +161,11 @@ pub struct Body {
     pub extent: f64,
     /// The condition spec of every patch (`None` = traction-free).
     pub patch_specs: Vec<Option<BoundarySpec>>,
-    /// `plane_stress` on a 2-D body: the out-of-plane axis (that of its
-    /// `empty` patches), along which the reported stress is zero. The
-    /// material's λ* (eq. 3.17 with λ* = 2μλ/(λ + 2μ)) gives the in-plane
-    /// stress of σ_zz = 0, but its own σ_zz = λ* tr ε is not the body's.
-    pub plane_stress_axis: Option<usize>,
+    /// `plane_stress`: the reported stress has no component along the
+    /// out-of-plane axis (`SolidMomentum::unsolved`). The material's λ*
+    /// (eq. 3.17 with λ* = 2μλ/(λ + 2μ)) gives the in-plane stress of
+    /// σ_zz = 0, but its own σ_zz = λ* tr ε is not the body's.
+    pub plane_stress: bool,
     /// Motion of a rigid body at the current time: translation, rotation
     /// and its origin (from its first displacement or rigid-motion patch).
     pub rigid_motion: (Vector, Tensor, Vector),
@@ -606,11 +579,6 @@ fn build_body(
         |(lo, hi), p| (lo.inf(p), hi.sup(p)),
     );
     let extent = (hi - lo).norm();
-    let plane_stress_axis = if spec.material.plane_stress {
-        empty_axis(&mesh, &geom, &patch_specs)
-    } else {
-        None
-    };
     Ok(Body {
         name: spec.name.clone(),
         index: bi,
@@ -621,7 +589,7 @@ fn build_body(
         offset,
         initial_face_centres,
         extent,
-        plane_stress_axis,
+        plane_stress: spec.material.plane_stress,
         patch_specs,
         rigid_motion: (Vector::zeros(), Tensor::identity(), Vector::zeros()),
         mesh_motion,

@@ -280,14 +280,16 @@ const HARMONIC_START_SOLVES: usize = 8;
 /// Sweeps over the components of the harmonic start where `symmetry` or
 /// `normal-displacement` faces lie on inclined planes, whose condition
 /// n·u = v couples the components
-/// ([`fv_discretise::SolidMomentum::add_inclined_plane_coupling`]), and the
-/// relative change of a sweep at which they stop. With one sweep the
+/// ([`fv_discretise::SolidMomentum::add_inclined_plane_coupling`]), at
+/// most. With one sweep the
 /// start held the plane only in part: a neo-Hookean bar on a mesh rotated
 /// off the axes, stretched 5 % in its first increment by a
 /// normal-displacement with symmetry planes at its other end, diverged in
 /// the third outer iteration (the same bar along the axes: 21 outer
 /// iterations).
 const HARMONIC_START_SWEEPS: usize = 30;
+/// A sweep that changes the extension by less than this fraction of its
+/// largest value ends the sweeps ([`HARMONIC_START_SWEEPS`]).
 const HARMONIC_SWEEP_TOLERANCE: f64 = 1e-3;
 
 /// Directions (0, 1, 2) that are not solved: the out-of-plane axis of a

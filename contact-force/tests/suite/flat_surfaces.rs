@@ -127,6 +127,23 @@ fn pairs_from_the_detector_give_the_same_tractions() {
     }
 }
 
+/// Part over the unit master square of a slave face of size `h` centred
+/// at `c`, the slave shifted by `d` (> 0) in x and y: the faces sticking
+/// out past x = 1 or y = 1 are partly covered.
+fn covered_share(c: &Vector, (hx, hy): (Real, Real), (dx, dy): (Real, Real)) -> Real {
+    let fx = if c.x > 1.0 - hx + dx {
+        (1.0 - (c.x - 0.5 * hx)) / hx
+    } else {
+        1.0
+    };
+    let fy = if c.y > 1.0 - hy + dy {
+        (1.0 - (c.y - 0.5 * hy)) / hy
+    } else {
+        1.0
+    };
+    fx * fy
+}
+
 #[test]
 fn partial_overlap_gives_the_exact_overlap_area() {
     // slave shifted by half a slave face in x and a quarter of one in y
@@ -158,18 +175,8 @@ fn partial_overlap_gives_the_exact_overlap_area() {
     }
     // slave faces sticking out past x = 1 or y = 1 are partly loaded
     for f in 0..35 {
-        let c = s.face_centres[f];
-        let fx = if c.x > 1.0 - hx + dx {
-            (1.0 - (c.x - 0.5 * hx)) / hx
-        } else {
-            1.0
-        };
-        let fy = if c.y > 1.0 - hy + dy {
-            (1.0 - (c.y - 0.5 * hy)) / hy
-        } else {
-            1.0
-        };
-        assert!(close(out.slave.pressure[f], p * fx * fy, 1e-12, 0.0), "{f}");
+        let share = covered_share(&s.face_centres[f], (hx, hy), (dx, dy));
+        assert!(close(out.slave.pressure[f], p * share, 1e-12, 0.0), "{f}");
     }
     // master and slave swapped: the same total forces
     let swapped = swap_pairs(&pairs, 35);
@@ -208,22 +215,12 @@ fn pointwise_overhanging_slave_presses_with_its_covered_part() {
                 stats.contact_area
             );
             for f in 0..35 {
-                let c = s.face_centres[f];
-                let fx = if c.x > 1.0 - hx + dx {
-                    (1.0 - (c.x - 0.5 * hx)) / hx
-                } else {
-                    1.0
-                };
-                let fy = if c.y > 1.0 - hy + dy {
-                    (1.0 - (c.y - 0.5 * hy)) / hy
-                } else {
-                    1.0
-                };
+                let share = covered_share(&s.face_centres[f], (hx, hy), (dx, dy));
                 assert!(
-                    close(out.slave.pressure[f], p * fx * fy, 1e-12, 0.0),
+                    close(out.slave.pressure[f], p * share, 1e-12, 0.0),
                     "overhang {kx}, face {f}: {} vs {}",
                     out.slave.pressure[f],
-                    p * fx * fy
+                    p * share
                 );
             }
         }

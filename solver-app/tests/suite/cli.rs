@@ -21,6 +21,14 @@ type = "displacement"
 value = { table = [[0.0, [0, 0, 0]], [1.0, [0, -0.01, 0]]] }
 "#;
 
+/// A rigid plate on top of [`GOOD`]'s block (appended to it).
+const RIGID_PLATE: &str = r#"[[body]]
+name = "plate"
+rigid = true
+mesh = { generator = "box", min = [0, 1, 0], max = [1, 1.2, 1], cells = [2, 1, 2] }
+material = { model = "linear-elastic", E = 200.0, nu = 0.3 }
+"#;
+
 fn fvc(args: &[&str]) -> (i32, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_fvc"))
         .args(args)
@@ -208,14 +216,8 @@ fn ten_malformed_inputs_exit_2_with_precise_messages() {
 #[test]
 fn a_contact_patch_with_its_own_boundary_condition_is_refused() {
     let dir = tempfile::tempdir().unwrap();
-    let two = GOOD.to_string()
-        + r#"
-[[body]]
-name = "plate"
-rigid = true
-mesh = { generator = "box", min = [0, 1, 0], max = [1, 1.2, 1], cells = [2, 1, 2] }
-material = { model = "linear-elastic", E = 200.0, nu = 0.3 }
-[[contact]]
+    let two = format!("{GOOD}{RIGID_PLATE}")
+        + r#"[[contact]]
 master = "plate/ymin"
 slave = "block/xmax"
 coupling = "implicit"
@@ -236,268 +238,13 @@ coupling = "implicit"
     );
 }
 
-/// A hexahedral box [0, l]³ of `n` cells a side, its points mapped by
-/// `map`, as Gmsh MSH 4.1 ascii with the patches xmin … zmax (each side's
-/// quadrangles wound outwards).
-fn box_msh(n: [usize; 3], l: [f64; 3], map: impl Fn([f64; 3]) -> [f64; 3]) -> String {
-    use std::fmt::Write as _;
-    let [nx, ny, nz] = n;
-    let id = |i: usize, j: usize, k: usize| 1 + i + (nx + 1) * (j + (ny + 1) * k);
-    let mut points = Vec::new();
-    for k in 0..=nz {
-        for j in 0..=ny {
-            for i in 0..=nx {
-                let x = [
-                    l[0] * i as f64 / nx as f64,
-                    l[1] * j as f64 / ny as f64,
-                    l[2] * k as f64 / nz as f64,
-                ];
-                points.push(map(x));
-            }
-        }
-    }
-    let mut sides: Vec<(&str, Vec<[usize; 4]>)> = ["xmin", "xmax", "ymin", "ymax", "zmin", "zmax"]
-        .iter()
-        .map(|&s| (s, Vec::new()))
-        .collect();
-    for k in 0..nz {
-        for j in 0..ny {
-            sides[0].1.push([
-                id(0, j, k),
-                id(0, j, k + 1),
-                id(0, j + 1, k + 1),
-                id(0, j + 1, k),
-            ]);
-            sides[1].1.push([
-                id(nx, j, k),
-                id(nx, j + 1, k),
-                id(nx, j + 1, k + 1),
-                id(nx, j, k + 1),
-            ]);
-        }
-        for i in 0..nx {
-            sides[2].1.push([
-                id(i, 0, k),
-                id(i + 1, 0, k),
-                id(i + 1, 0, k + 1),
-                id(i, 0, k + 1),
-            ]);
-            sides[3].1.push([
-                id(i, ny, k),
-                id(i, ny, k + 1),
-                id(i + 1, ny, k + 1),
-                id(i + 1, ny, k),
-            ]);
-        }
-    }
-    for j in 0..ny {
-        for i in 0..nx {
-            sides[4].1.push([
-                id(i, j, 0),
-                id(i, j + 1, 0),
-                id(i + 1, j + 1, 0),
-                id(i + 1, j, 0),
-            ]);
-            sides[5].1.push([
-                id(i, j, nz),
-                id(i + 1, j, nz),
-                id(i + 1, j + 1, nz),
-                id(i, j + 1, nz),
-            ]);
-        }
-    }
-    let mut hexes = Vec::new();
-    for k in 0..nz {
-        for j in 0..ny {
-            for i in 0..nx {
-                hexes.push([
-                    id(i, j, k),
-                    id(i + 1, j, k),
-                    id(i + 1, j + 1, k),
-                    id(i, j + 1, k),
-                    id(i, j, k + 1),
-                    id(i + 1, j, k + 1),
-                    id(i + 1, j + 1, k + 1),
-                    id(i, j + 1, k + 1),
-                ]);
-            }
-        }
-    }
-    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-    for p in &points {
-        for d in 0..3 {
-            lo[d] = lo[d].min(p[d]);
-            hi[d] = hi[d].max(p[d]);
-        }
-    }
-    let bb = format!(
-        "{} {} {} {} {} {}",
-        lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]
-    );
-    let mut o = String::from("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n7\n");
-    for (t, (name, _)) in sides.iter().enumerate() {
-        let _ = writeln!(o, "2 {} \"{name}\"", t + 1);
-    }
-    o += "3 7 \"body\"\n$EndPhysicalNames\n$Entities\n0 0 6 1\n";
-    for t in 1..=6 {
-        let _ = writeln!(o, "{t} {bb} 1 {t} 0");
-    }
-    let _ = writeln!(o, "1 {bb} 1 7 0\n$EndEntities");
-    let np = points.len();
-    let _ = writeln!(o, "$Nodes\n1 {np} 1 {np}\n3 1 0 {np}");
-    for i in 1..=np {
-        let _ = writeln!(o, "{i}");
-    }
-    for p in &points {
-        let _ = writeln!(o, "{:.17e} {:.17e} {:.17e}", p[0], p[1], p[2]);
-    }
-    let ne = sides.iter().map(|s| s.1.len()).sum::<usize>() + hexes.len();
-    let _ = writeln!(o, "$EndNodes\n$Elements\n7 {ne} 1 {ne}");
-    let mut e = 1;
-    for (t, (_, quads)) in sides.iter().enumerate() {
-        let _ = writeln!(o, "2 {} 3 {}", t + 1, quads.len());
-        for q in quads {
-            let _ = writeln!(o, "{e} {} {} {} {}", q[0], q[1], q[2], q[3]);
-            e += 1;
-        }
-    }
-    let _ = writeln!(o, "3 1 5 {}", hexes.len());
-    for h in &hexes {
-        let v: Vec<String> = h.iter().map(|x| x.to_string()).collect();
-        let _ = writeln!(o, "{e} {}", v.join(" "));
-        e += 1;
-    }
-    o + "$EndElements\n"
-}
-
-/// A neo-Hookean bar on a mesh turned off the axes, stretched 5 % in its
-/// first increment by a `normal-displacement` with `symmetry` on its other
-/// three sides: the first increment converges without a cut-back (its
-/// harmonic start holds the inclined planes: it diverged in the third
-/// outer iteration), and the end force is the uniaxial neo-Hookean one
-/// along the bar's axis.
-#[test]
-fn a_bar_turned_off_the_axes_stretches_in_its_first_increment() {
-    let dir = tempfile::tempdir().unwrap();
-    // rotation by 30° about z, then −20° about y, then 50° about x
-    let (a, b, c) = (
-        30f64.to_radians(),
-        (-20f64).to_radians(),
-        50f64.to_radians(),
-    );
-    let rz = |p: [f64; 3]| {
-        [
-            a.cos() * p[0] - a.sin() * p[1],
-            a.sin() * p[0] + a.cos() * p[1],
-            p[2],
-        ]
-    };
-    let ry = |p: [f64; 3]| {
-        [
-            b.cos() * p[0] + b.sin() * p[2],
-            p[1],
-            -b.sin() * p[0] + b.cos() * p[2],
-        ]
-    };
-    let rx = |p: [f64; 3]| {
-        [
-            p[0],
-            c.cos() * p[1] - c.sin() * p[2],
-            c.sin() * p[1] + c.cos() * p[2],
-        ]
-    };
-    let turn = |p: [f64; 3]| rx(ry(rz(p)));
-    write(
-        dir.path(),
-        "bar.msh",
-        box_msh([16, 4, 4], [4.0, 1.0, 1.0], turn).as_bytes(),
-    );
-    let case = r#"title = "bar"
-[analysis]
-strain = "large"
-[time]
-end = 1.0
-steps = 2
-[solver]
-tolerance = 1e-8
-[[body]]
-name = "bar"
-mesh = { file = "bar.msh" }
-material = { model = "neo-hookean", E = 1e6, nu = 0.4 }
-[body.boundary.xmin]
-type = "symmetry"
-[body.boundary.ymin]
-type = "symmetry"
-[body.boundary.zmin]
-type = "symmetry"
-[body.boundary.xmax]
-type = "normal-displacement"
-value = { table = [[0.0, 0.0], [1.0, 0.4]] }
-"#;
-    let (code, outdir, err) = run_quietly(dir.path(), case.as_bytes());
-    assert_eq!(code, 0, "{err}");
-    let log = std::fs::read_to_string(outdir.join("bar").join("log.txt")).unwrap();
-    assert!(!log.contains("failed"), "a cut-back:\n{log}");
-    // uniaxial stretch λ = 1.1 of the compressible neo-Hookean of eq. 2.25,
-    // J σ = (K/2)(J² − 1) I + μ dev(J^(−2/3) F Fᵀ): the lateral stretch t
-    // solves σ_22 = 0, then F = σ_11 · (area 1) · t²
-    let (e, nu) = (1e6f64, 0.4f64);
-    let (mu, bulk) = (e / (2.0 * (1.0 + nu)), e / (3.0 * (1.0 - 2.0 * nu)));
-    let stretch = 1.1f64;
-    let sigma = |t: f64| {
-        let j = stretch * t * t;
-        let (b1, b2) = (
-            stretch * stretch * j.powf(-2.0 / 3.0),
-            t * t * j.powf(-2.0 / 3.0),
-        );
-        let mean = (b1 + 2.0 * b2) / 3.0;
-        let p = 0.5 * bulk * (j * j - 1.0);
-        ((p + mu * (b1 - mean)) / j, (p + mu * (b2 - mean)) / j)
-    };
-    let (mut lo, mut hi) = (0.5, 1.0);
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if sigma(mid).1 > 0.0 {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
-    let t = 0.5 * (lo + hi);
-    let force = sigma(t).0 * t * t;
-    let (_, v) = read_summary(&outdir.join("bar"));
-    let f: Vec<f64> = (0..3)
-        .map(|d| {
-            v["patches"]["bar/xmax"]["reaction_force"][d]
-                .as_f64()
-                .unwrap()
-        })
-        .collect();
-    let magnitude = (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt();
-    eprintln!("turned bar: |F| = {magnitude:.4} against {force:.4}");
-    assert!(
-        (magnitude / force - 1.0).abs() < 1e-3,
-        "|F| {magnitude} against {force}"
-    );
-    // along the bar's axis
-    let axis = turn([1.0, 0.0, 0.0]);
-    let along = (f[0] * axis[0] + f[1] * axis[1] + f[2] * axis[2]) / magnitude;
-    assert!(along > 1.0 - 1e-6, "force off the axis: {along}");
-}
-
 /// What `run` refuses before it solves, `check` refuses too: a contact
 /// patch that does not exist (found where the contact pairs are built).
 #[test]
 fn check_refuses_a_contact_that_run_refuses() {
     let dir = tempfile::tempdir().unwrap();
-    let case = GOOD.to_string()
-        + r#"
-[[body]]
-name = "plate"
-rigid = true
-mesh = { generator = "box", min = [0, 1, 0], max = [1, 1.2, 1], cells = [2, 1, 2] }
-material = { model = "linear-elastic", E = 200.0, nu = 0.3 }
-[[contact]]
+    let case = format!("{GOOD}{RIGID_PLATE}")
+        + r#"[[contact]]
 master = "plate/ymin"
 slave = "block/bottom"
 "#;
@@ -522,14 +269,8 @@ fn loads_on_rigid_bodies_and_all_rigid_cases_are_refused() {
         rigid_block.as_bytes(),
         &["body[0].rigid", "at least one body must be deformable"],
     );
-    let case = GOOD.to_string()
-        + r#"
-[[body]]
-name = "plate"
-rigid = true
-mesh = { generator = "box", min = [0, 1, 0], max = [1, 1.2, 1], cells = [2, 1, 2] }
-material = { model = "linear-elastic", E = 200.0, nu = 0.3 }
-[body.boundary.xmax]
+    let case = format!("{GOOD}{RIGID_PLATE}")
+        + r#"[body.boundary.xmax]
 type = "traction"
 value = [5.0, 0, 0]
 "#;

@@ -10,7 +10,7 @@ use fv_materials::{Hardening, LargeStrainMaterial, NeoHookeanPlastic, PointState
 use validation::analytical::{
     elastica_cantilever_tip, neo_hookean_simple_shear, neo_hookean_uniaxial,
 };
-use validation::{patch_mean, run_toml, run_toml_with_history};
+use validation::{patch_mean, run_toml, run_toml_edited, run_toml_with_history};
 
 const E: f64 = 1000.0;
 const NU: f64 = 0.3;
@@ -469,4 +469,224 @@ translation = { table = [[0.0, [0, 0, 0]], [1.0, [0, 0, -1]]] }
     );
     assert!(outer <= 3, "{outer} outer iterations");
     assert!(worst < 1e-6, "cells {worst} mm off the rigid translation");
+}
+
+/// A hexahedral box [0, l]³ of `n` cells a side, its points mapped by
+/// `map`, as Gmsh MSH 4.1 ascii with the patches xmin … zmax (each side's
+/// quadrangles wound outwards).
+fn box_msh(n: [usize; 3], l: [f64; 3], map: impl Fn([f64; 3]) -> [f64; 3]) -> String {
+    use std::fmt::Write as _;
+    let [nx, ny, nz] = n;
+    let id = |i: usize, j: usize, k: usize| 1 + i + (nx + 1) * (j + (ny + 1) * k);
+    let mut points = Vec::new();
+    for k in 0..=nz {
+        for j in 0..=ny {
+            for i in 0..=nx {
+                let x = [
+                    l[0] * i as f64 / nx as f64,
+                    l[1] * j as f64 / ny as f64,
+                    l[2] * k as f64 / nz as f64,
+                ];
+                points.push(map(x));
+            }
+        }
+    }
+    let mut sides: Vec<(&str, Vec<[usize; 4]>)> = ["xmin", "xmax", "ymin", "ymax", "zmin", "zmax"]
+        .iter()
+        .map(|&s| (s, Vec::new()))
+        .collect();
+    for k in 0..nz {
+        for j in 0..ny {
+            sides[0].1.push([
+                id(0, j, k),
+                id(0, j, k + 1),
+                id(0, j + 1, k + 1),
+                id(0, j + 1, k),
+            ]);
+            sides[1].1.push([
+                id(nx, j, k),
+                id(nx, j + 1, k),
+                id(nx, j + 1, k + 1),
+                id(nx, j, k + 1),
+            ]);
+        }
+        for i in 0..nx {
+            sides[2].1.push([
+                id(i, 0, k),
+                id(i + 1, 0, k),
+                id(i + 1, 0, k + 1),
+                id(i, 0, k + 1),
+            ]);
+            sides[3].1.push([
+                id(i, ny, k),
+                id(i, ny, k + 1),
+                id(i + 1, ny, k + 1),
+                id(i + 1, ny, k),
+            ]);
+        }
+    }
+    for j in 0..ny {
+        for i in 0..nx {
+            sides[4].1.push([
+                id(i, j, 0),
+                id(i, j + 1, 0),
+                id(i + 1, j + 1, 0),
+                id(i + 1, j, 0),
+            ]);
+            sides[5].1.push([
+                id(i, j, nz),
+                id(i + 1, j, nz),
+                id(i + 1, j + 1, nz),
+                id(i, j + 1, nz),
+            ]);
+        }
+    }
+    let mut hexes = Vec::new();
+    for k in 0..nz {
+        for j in 0..ny {
+            for i in 0..nx {
+                hexes.push([
+                    id(i, j, k),
+                    id(i + 1, j, k),
+                    id(i + 1, j + 1, k),
+                    id(i, j + 1, k),
+                    id(i, j, k + 1),
+                    id(i + 1, j, k + 1),
+                    id(i + 1, j + 1, k + 1),
+                    id(i, j + 1, k + 1),
+                ]);
+            }
+        }
+    }
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for p in &points {
+        for d in 0..3 {
+            lo[d] = lo[d].min(p[d]);
+            hi[d] = hi[d].max(p[d]);
+        }
+    }
+    let bb = format!(
+        "{} {} {} {} {} {}",
+        lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]
+    );
+    let mut o = String::from("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n7\n");
+    for (t, (name, _)) in sides.iter().enumerate() {
+        let _ = writeln!(o, "2 {} \"{name}\"", t + 1);
+    }
+    o += "3 7 \"body\"\n$EndPhysicalNames\n$Entities\n0 0 6 1\n";
+    for t in 1..=6 {
+        let _ = writeln!(o, "{t} {bb} 1 {t} 0");
+    }
+    let _ = writeln!(o, "1 {bb} 1 7 0\n$EndEntities");
+    let np = points.len();
+    let _ = writeln!(o, "$Nodes\n1 {np} 1 {np}\n3 1 0 {np}");
+    for i in 1..=np {
+        let _ = writeln!(o, "{i}");
+    }
+    for p in &points {
+        let _ = writeln!(o, "{:.17e} {:.17e} {:.17e}", p[0], p[1], p[2]);
+    }
+    let ne = sides.iter().map(|s| s.1.len()).sum::<usize>() + hexes.len();
+    let _ = writeln!(o, "$EndNodes\n$Elements\n7 {ne} 1 {ne}");
+    let mut e = 1;
+    for (t, (_, quads)) in sides.iter().enumerate() {
+        let _ = writeln!(o, "2 {} 3 {}", t + 1, quads.len());
+        for q in quads {
+            let _ = writeln!(o, "{e} {} {} {} {}", q[0], q[1], q[2], q[3]);
+            e += 1;
+        }
+    }
+    let _ = writeln!(o, "3 1 5 {}", hexes.len());
+    for h in &hexes {
+        let v: Vec<String> = h.iter().map(|x| x.to_string()).collect();
+        let _ = writeln!(o, "{e} {}", v.join(" "));
+        e += 1;
+    }
+    o + "$EndElements\n"
+}
+
+/// A neo-Hookean bar on a mesh turned off the axes, stretched 5 % in its
+/// first increment by a `normal-displacement` with `symmetry` on its other
+/// three sides: the first increment converges without a cut-back (its
+/// harmonic start holds the inclined planes: it diverged in the third
+/// outer iteration), and the end force is the uniaxial neo-Hookean one
+/// along the bar's axis.
+#[test]
+fn a_bar_turned_off_the_axes_stretches_in_its_first_increment() {
+    let dir = tempfile::tempdir().unwrap();
+    // rotation by 30° about z, then −20° about y, then 50° about x
+    let (a, b, c) = (
+        30f64.to_radians(),
+        (-20f64).to_radians(),
+        50f64.to_radians(),
+    );
+    let rz = |p: [f64; 3]| {
+        [
+            a.cos() * p[0] - a.sin() * p[1],
+            a.sin() * p[0] + a.cos() * p[1],
+            p[2],
+        ]
+    };
+    let ry = |p: [f64; 3]| {
+        [
+            b.cos() * p[0] + b.sin() * p[2],
+            p[1],
+            -b.sin() * p[0] + b.cos() * p[2],
+        ]
+    };
+    let rx = |p: [f64; 3]| {
+        [
+            p[0],
+            c.cos() * p[1] - c.sin() * p[2],
+            c.sin() * p[1] + c.cos() * p[2],
+        ]
+    };
+    let turn = |p: [f64; 3]| rx(ry(rz(p)));
+    let msh = box_msh([16, 4, 4], [4.0, 1.0, 1.0], turn);
+    if let Err(e) = std::fs::write(dir.path().join("bar.msh"), msh) {
+        panic!("{e}")
+    }
+    let case = r#"title = "bar"
+[analysis]
+strain = "large"
+[time]
+end = 1.0
+steps = 2
+[solver]
+tolerance = 1e-8
+[[body]]
+name = "bar"
+mesh = { file = "bar.msh" }
+material = { model = "neo-hookean", E = 1e6, nu = 0.4 }
+[body.boundary.xmin]
+type = "symmetry"
+[body.boundary.ymin]
+type = "symmetry"
+[body.boundary.zmin]
+type = "symmetry"
+[body.boundary.xmax]
+type = "normal-displacement"
+value = { table = [[0.0, 0.0], [1.0, 0.4]] }
+"#;
+    // no cut-back: a failed increment fails the run
+    let out = run_toml_edited(case, dir.path(), true, |_| {});
+    assert!(out.converged, "{:?}", out.failure);
+    // uniaxial stretch 1.1 of the neo-Hookean solid (eq. 2.25), unit section
+    let (e, nu) = (1e6f64, 0.4f64);
+    let (_, force) =
+        neo_hookean_uniaxial(e / (2.0 * (1.0 + nu)), e / (3.0 * (1.0 - 2.0 * nu)), 1.1);
+    let Some(xmax) = out.bodies[0].mesh.patch_index("xmax") else {
+        panic!("no patch xmax")
+    };
+    let f = solver_app::results::patch_reaction(&out.bodies, 0, xmax, &out.contacts);
+    let magnitude = f.norm();
+    eprintln!("turned bar: |F| = {magnitude:.4} against {force:.4}");
+    assert!(
+        (magnitude / force - 1.0).abs() < 1e-3,
+        "|F| {magnitude} against {force}"
+    );
+    // along the bar's axis
+    let axis = turn([1.0, 0.0, 0.0]);
+    let along = (f.x * axis[0] + f.y * axis[1] + f.z * axis[2]) / magnitude;
+    assert!(along > 1.0 - 1e-6, "force off the axis: {along}");
 }

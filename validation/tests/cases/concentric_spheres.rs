@@ -16,7 +16,7 @@
 //! (under); the benchmark polyMesh reaches 9 mm and meets the 5 %. The fine mesh's
 //! shortfall is the converged answer's: the axisymmetric section
 //! ([`fine_mesh_follows_the_converged_axisymmetric_section`]) converges
-//! 7–9 % under Abaqus/FEBio.
+//! 8–9 % under Abaqus/FEBio.
 //! Outer-iteration counts below were measured without the linear
 //! predictor (`[solver] predictor`), except where said; it leaves the
 //! forces unchanged and cuts them by ~20 % (first 3 mm: 195 against 242).
@@ -382,8 +382,10 @@ fn reference_curves_mapping() {
 /// the outer shell alone (axisymmetric wedge, 8 × 90 cells, small strain)
 /// under a pressure cap at its pole, against the axisymmetric Q8
 /// finite-element solution of `fe_reference.py`. Measured (boundary
-/// faces nearest the poles, farthest on the rim): u_z +0.43 % (outer
-/// pole) and +0.39 % (inner pole), u_r −0.17 % (rim).
+/// faces nearest the poles, farthest on the rim): u_z +0.17 % (outer
+/// pole) and +0.22 % (inner pole), u_r −0.18 % (rim); before the wedge
+/// faces took the cell centre rotated back exactly (`axisymmetric_bar`),
+/// +0.43, +0.39 and −0.17 %.
 #[test]
 fn shell_under_a_pole_load_matches_finite_elements() {
     let (u, converged) = validation::benchmarks::concentric_spheres::run_pole_load();
@@ -409,14 +411,14 @@ fn shell_under_a_pole_load_matches_finite_elements() {
 ///
 /// | mesh | F | deviation |
 /// |---|---|---|
-/// | section 10 × 60 per shell | 0.515 / 0.725 / 1.205 | −9.4 / −7.8 / −5.0 % |
-/// | section 16 × 120 per shell | 0.516 / 0.727 / 1.208 | −9.1 / −7.6 / −4.7 % |
+/// | section 10 × 60 per shell | 0.514 / 0.724 / 1.202 | −9.5 / −8.1 / −5.2 % |
+/// | section 16 × 120 per shell | 0.516 / 0.726 / 1.206 | −9.2 / −7.8 / −4.9 % |
 /// | 3-D fine (fine.toml) | 0.519 / 0.732 / 1.213 | −8.6 / −7.0 / −4.3 % |
 ///
-/// The converged force lies 7–9 % under Abaqus and FEBio at 1.5–2 mm
+/// The converged force lies 8–9 % under Abaqus and FEBio at 1.5–2 mm
 /// (6–11 % under each) and 7–10 % over Areias and Puso–Laursen: within
 /// the published spread, but outside the benchmark's 5 % of the stiffer
-/// pair. The fine 3-D mesh follows it within 0.7 %. The same solver and
+/// pair. The fine 3-D mesh follows it within 0.8 %. The same solver and
 /// wedge match an independent finite-element solution of one shell under
 /// a pole load within 0.5 % ([`shell_under_a_pole_load_matches_finite_elements`]);
 /// Abaqus and FEBio ran meshes as coarse as case.toml (thesis §5.3.4),

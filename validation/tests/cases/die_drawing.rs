@@ -65,19 +65,18 @@ fn full_pull_levels_off_within_three_percent(swapped: bool) {
     );
 }
 
-/// The whole 0.25 m pull as shipped (100 increments, 177 outer iterations
+/// The whole 0.25 m pull as shipped (100 increments, 145 outer iterations
 /// each under Anderson acceleration, ~3 s): the force over 0.18–0.25 m is
-/// 621.5–633.4 N, mean 623.5 N, −2.64 % against eq. 5.1 (the thesis
-/// reports +5 %), spread 1.9 % (the first increment of the window still
-/// holds the end of the drop past the die exit).
+/// 653.1–656.2 N, mean 654.3 N, +2.18 % against eq. 5.1 (the thesis
+/// reports +5 %), spread 0.47 %.
 #[test]
 fn die_drawing_force_levels_off_within_three_percent_of_eq_5_1() {
     full_pull_levels_off_within_three_percent(false);
 }
 
 /// Master and slave swapped (the cylinder as master, the rigid die as
-/// slave). Measured: 620.9–632.2 N over the window, mean 623.2 N, −2.69 %;
-/// 246 outer iterations per increment, ~4 s. It used to stop at
+/// slave). Measured: 652.9–656.0 N over the window, mean 654.2 N, +2.15 %;
+/// 147 outer iterations per increment, ~3 s. It used to stop at
 /// 0.1475 m: the contact faces' boundary values took a circumferential
 /// component along their tilted normals, which the cell-to-point fit
 /// passed to the points of the two wedge planes with opposite signs,

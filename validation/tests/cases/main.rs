@@ -3,6 +3,7 @@
 //! the cases share one. Run one case with
 //! `cargo test --release -p validation --test cases <module>:: -- --nocapture`.
 
+mod axisymmetric_bar;
 mod block_in_half_tube;
 mod cantilever;
 mod concentric_cylinders;

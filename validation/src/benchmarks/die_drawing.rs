@@ -87,11 +87,29 @@ impl DieRun {
     }
 }
 
-/// Runs case `file` of `validation/cases/die-drawing` up to pull distance
-/// `end` (m; the case's `[time] end` and `steps` scaled to keep the step),
-/// with the die as master or (`swapped`) as slave.
-pub fn run(file: &str, end: f64, swapped: bool) -> DieRun {
-    let (dir, mut text) = read_case("die-drawing", file);
+/// The cylinder's mesh in `validation/cases/die-drawing`, both from
+/// `cylinder.geo`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CylinderMesh {
+    /// `cylinder.msh`, the benchmark's 20 × 3 cells + 17 × 3 in the front
+    /// (the case as shipped).
+    Benchmark,
+    /// `cylinder-fine.msh`, every direction halved: 40 × 6 + 34 × 6 cells
+    /// (`gmsh -3 -format msh41 -setnumber nt 34 -setnumber ns 40
+    /// -setnumber nr 6 -setnumber pt 0.9825 cylinder.geo -o
+    /// cylinder-fine.msh`; pt = 0.9825 ≈ √0.965 keeps the grading).
+    Fine,
+}
+
+/// Runs `case.toml` of `validation/cases/die-drawing` on the cylinder
+/// `mesh` up to pull distance `end` (m; the case's `[time] end` and
+/// `steps` scaled to keep the step), with the die as master or
+/// (`swapped`) as slave.
+pub fn run(mesh: CylinderMesh, end: f64, swapped: bool) -> DieRun {
+    let (dir, mut text) = read_case("die-drawing", "case.toml");
+    if mesh == CylinderMesh::Fine {
+        text = text.replace("\"cylinder.msh\"", "\"cylinder-fine.msh\"");
+    }
     if swapped {
         text = swap_master_slave(&text, "die/contact", "cylinder/outer");
     }

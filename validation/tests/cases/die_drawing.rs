@@ -1,7 +1,9 @@
 //! Cylinder drawn through a rigid die (thesis §5.3.1, eq. 5.1): the
 //! pulling force against the steady drawing force of an incompressible
 //! neo-Hookean cylinder, 640.4 N; large strain in a one-cell wedge.
-use validation::benchmarks::die_drawing::{analytical_force, run, DieRun, FULL_PULL, STEADY};
+use validation::benchmarks::die_drawing::{
+    analytical_force, run, CylinderMesh, DieRun, FULL_PULL, STEADY,
+};
 
 fn report(r: &DieRun) {
     let reference = analytical_force();
@@ -28,11 +30,12 @@ fn report(r: &DieRun) {
     );
 }
 
-/// The whole pull with the die (`swapped` false) or the cylinder as
-/// master: runs to the end with the wedge kept a wedge, and the steady
-/// force over 0.18–0.25 m within 3 % of eq. 5.1 and spread under 2 %.
-fn full_pull_levels_off_within_three_percent(swapped: bool) {
-    let r = run("case.toml", FULL_PULL, swapped);
+/// The whole pull on the cylinder `mesh` with the die (`swapped` false)
+/// or the cylinder as master: runs to the end with the wedge kept a
+/// wedge, and the steady force over 0.18–0.25 m within `tolerance` of
+/// eq. 5.1 and spread under 2 %.
+fn full_pull_levels_off(mesh: CylinderMesh, swapped: bool, tolerance: f64) {
+    let r = run(mesh, FULL_PULL, swapped);
     report(&r);
     assert!(r.converged, "{:?}", r.failure);
     // the wedge keeps its shape under the mesh motion (WedgePointConstraint)
@@ -58,7 +61,10 @@ fn full_pull_levels_off_within_three_percent(swapped: bool) {
         100.0 * error,
         100.0 * spread
     );
-    assert!(error.abs() < 0.03, "steady force {mean} vs {reference}");
+    assert!(
+        error.abs() < tolerance,
+        "steady force {mean} vs {reference}"
+    );
     assert!(
         spread < 0.02,
         "the force still changes by {spread} over the window"
@@ -71,7 +77,7 @@ fn full_pull_levels_off_within_three_percent(swapped: bool) {
 /// reports +5 %), spread 0.47 %.
 #[test]
 fn die_drawing_force_levels_off_within_three_percent_of_eq_5_1() {
-    full_pull_levels_off_within_three_percent(false);
+    full_pull_levels_off(CylinderMesh::Benchmark, false, 0.03);
 }
 
 /// Master and slave swapped (the cylinder as master, the rigid die as
@@ -83,5 +89,24 @@ fn die_drawing_force_levels_off_within_three_percent_of_eq_5_1() {
 /// tilting the faces further (`SolidMomentum::unsolved`).
 #[test]
 fn die_drawing_cylinder_master() {
-    full_pull_levels_off_within_three_percent(true);
+    full_pull_levels_off(CylinderMesh::Benchmark, true, 0.03);
+}
+
+/// The same on the cylinder refined twice in every direction (40 × 6 +
+/// 34 × 6 cells, `cylinder-fine.msh`): the force converges on eq. 5.1.
+/// Measured: 639.7–640.3 N over 0.18–0.25 m, mean 640.1 N, −0.06 %,
+/// spread 0.09 %; 193 outer iterations per increment, 13 s (before the
+/// wedge faces took the cell centre rotated back exactly: 628.4 N,
+/// −1.9 %). The benchmark mesh gives +2.2 %.
+#[test]
+fn die_drawing_fine_mesh_converges_on_eq_5_1() {
+    full_pull_levels_off(CylinderMesh::Fine, false, 0.005);
+}
+
+/// The fine mesh with the cylinder as master (`--ignored`, 17 s):
+/// measured mean 640.0 N, −0.07 %, spread 0.08 %.
+#[test]
+#[ignore]
+fn die_drawing_fine_mesh_cylinder_master() {
+    full_pull_levels_off(CylinderMesh::Fine, true, 0.005);
 }

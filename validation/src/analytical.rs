@@ -8,6 +8,14 @@ pub fn lame_cylinder_stress(a: f64, b: f64, p: f64, r: f64) -> (f64, f64) {
     (c - d, c + d)
 }
 
+/// Lamé solution of a thick-walled sphere (inner radius `a`, outer `b`)
+/// under internal pressure `p`: (σ_rr, σ_θθ = σ_φφ) at radius `r`.
+pub fn lame_sphere_stress(a: f64, b: f64, p: f64, r: f64) -> (f64, f64) {
+    let c = p * a.powi(3) / (b.powi(3) - a.powi(3));
+    let d = c * b.powi(3) / r.powi(3);
+    (c - d, c + 0.5 * d)
+}
+
 /// Tip deflection of a cantilever of length `l`, depth `d`, thickness `t`
 /// under an end shear force `p` by Timoshenko beam theory:
 /// δ = P L³/(3 E I) + P L/(κ G A), κ = 5/6 (rectangular section).

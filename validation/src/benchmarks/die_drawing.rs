@@ -108,6 +108,10 @@ pub enum CylinderMesh {
 pub fn run(mesh: CylinderMesh, end: f64, swapped: bool) -> DieRun {
     let (dir, mut text) = read_case("die-drawing", "case.toml");
     if mesh == CylinderMesh::Fine {
+        assert!(
+            text.contains("\"cylinder.msh\""),
+            "die-drawing/case.toml no longer names cylinder.msh"
+        );
         text = text.replace("\"cylinder.msh\"", "\"cylinder-fine.msh\"");
     }
     if swapped {

@@ -154,12 +154,14 @@ impl PatchCondition {
 /// Rotation tensors of the faces of the wedge patches `patches`: for every
 /// face, the rotation about the wedge axis that takes the wedge mid-plane
 /// onto the face plane (OpenFOAM's wedge transform). Returns one vector of
-/// tensors per listed patch.
+/// tensors per listed patch. An error names the patch (mesh index) it
+/// blames: the mesh is not a one-cell wedge ([`check_wedge_shape`]).
 pub fn wedge_rotations(
     mesh: &PolyMesh,
     geom: &MeshGeometry,
     patches: &[usize],
-) -> Result<Vec<Vec<Tensor>>, MeshError> {
+) -> Result<Vec<Vec<Tensor>>, (usize, MeshError)> {
+    let first = patches.first().copied().unwrap_or(0);
     let normals: Vec<Vector> = patches
         .iter()
         .flat_map(|&p| mesh.patches[p].faces())
@@ -175,15 +177,21 @@ pub fn wedge_rotations(
         .min_by(|a, b| a.dot(&na).total_cmp(&b.dot(&na)))
         .unwrap_or(na);
     if na.dot(&nb) > 0.0 {
-        return Err(MeshError::invalid(
-            "wedge: the wedge patches must hold both wedge planes (front and back, with opposite normals)",
+        return Err((
+            first,
+            MeshError::invalid(
+                "wedge: the wedge patches must hold both wedge planes (front and back, with opposite normals)",
+            ),
         ));
     }
     let mid = (na - nb).normalize();
     let axis = na.cross(&nb);
     if axis.norm() < 1e-12 {
-        return Err(MeshError::invalid(
-            "wedge: the two wedge planes are parallel; a wedge needs an opening angle",
+        return Err((
+            first,
+            MeshError::invalid(
+                "wedge: the two wedge planes are parallel; a wedge needs an opening angle",
+            ),
         ));
     }
     let mut out = Vec::with_capacity(patches.len());
@@ -200,7 +208,111 @@ pub fn wedge_rotations(
         }
         out.push(rots);
     }
+    check_wedge_shape(mesh, geom, patches, &out, (na, nb))?;
     Ok(out)
+}
+
+/// Largest angle (rad) between a wedge face's normal and its plane's, and
+/// largest distance of a face centre from its plane or from the rotated
+/// image of its cell's face on the other plane, relative to the face size
+/// (√area): beyond these the body is not a wedge.
+const WEDGE_SHAPE_TOLERANCE: f64 = 1e-4;
+
+/// Checks that the faces of the wedge patches (`rotations` from
+/// [`wedge_rotations`], normals `na`, `nb` of the two planes) make a
+/// one-cell wedge about an axis: every face lies on one of the two planes,
+/// every cell has exactly one face on each, and each cell's face on one
+/// plane is its face on the other rotated about the planes' common line by
+/// the wedge angle. What a wedge condition models (a field that does not
+/// change around the axis) holds only then; a mesh several cells thick
+/// around the axis, a third patch set to wedge, a curved patch or a plane
+/// tilted off the revolved one gave wrong stresses without a word.
+fn check_wedge_shape(
+    mesh: &PolyMesh,
+    geom: &MeshGeometry,
+    patches: &[usize],
+    rotations: &[Vec<Tensor>],
+    (na, nb): (Vector, Vector),
+) -> Result<(), (usize, MeshError)> {
+    let first = patches.first().copied().unwrap_or(0);
+    let faces = || {
+        patches.iter().zip(rotations).flat_map(|(&p, r)| {
+            mesh.patches[p]
+                .faces()
+                .zip(r.iter())
+                .map(move |(f, r)| (p, f, r))
+        })
+    };
+    let on_plane_a = |n: &Vector| n.dot(&na) >= n.dot(&nb);
+    let (Some((_, fa, _)), Some((_, fb, _))) = (
+        faces().find(|(_, f, _)| on_plane_a(&geom.face_normals[*f])),
+        faces().find(|(_, f, _)| !on_plane_a(&geom.face_normals[*f])),
+    ) else {
+        return Ok(());
+    };
+    let (xa, xb) = (geom.face_centres[fa], geom.face_centres[fb]);
+    // the face of every cell on plane a and on plane b, with its rotation
+    let mut on_a: Vec<Option<(usize, Tensor)>> = vec![None; mesh.n_cells];
+    let mut on_b: Vec<Option<(usize, Tensor)>> = vec![None; mesh.n_cells];
+    for (p, f, r) in faces() {
+        let n = geom.face_normals[f];
+        let a = on_plane_a(&n);
+        let (plane_n, plane_x) = if a { (na, xa) } else { (nb, xb) };
+        let size = geom.face_mag[f].sqrt();
+        let off_plane = (geom.face_centres[f] - plane_x).dot(&plane_n).abs();
+        if (n - plane_n).norm() > WEDGE_SHAPE_TOLERANCE || off_plane > WEDGE_SHAPE_TOLERANCE * size
+        {
+            return Err((
+                p,
+                MeshError::invalid(format!(
+                    "wedge: face {f} (centre {:.6?}) lies on neither wedge plane: the wedge patches must hold just the two planes of a one-cell wedge (front and back), nothing curved and no third plane",
+                    geom.face_centres[f].as_slice()
+                )),
+            ));
+        }
+        let slot = if a { &mut on_a } else { &mut on_b };
+        let c = mesh.owner[f] as usize;
+        if slot[c].is_some() {
+            return Err((
+                p,
+                MeshError::invalid(format!(
+                    "wedge: cell {c} has two faces on one wedge plane: a wedge is one cell thick around its axis"
+                )),
+            ));
+        }
+        slot[c] = Some((f, *r));
+    }
+    // a point of the planes' common line (the wedge axis)
+    let axis = na.cross(&nb);
+    let lhs = Tensor::from_rows(&[na.transpose(), nb.transpose(), axis.transpose()]);
+    let Some(pivot) = lhs
+        .try_inverse()
+        .map(|m| m * Vector::new(na.dot(&xa), nb.dot(&xb), 0.0))
+    else {
+        return Ok(());
+    };
+    for c in 0..mesh.n_cells {
+        let (Some((fa, ra)), Some((fb, rb))) = (on_a[c], on_b[c]) else {
+            return Err((
+                first,
+                MeshError::invalid(format!(
+                    "wedge: cell {c} has no face on one of the two wedge planes: a wedge is one cell thick around its axis, every cell touching both planes"
+                )),
+            ));
+        };
+        // plane b onto plane a: the rotation by the whole wedge angle
+        let image = pivot + ra * rb.transpose() * (geom.face_centres[fb] - pivot);
+        let size = geom.face_mag[fa].sqrt();
+        if (geom.face_centres[fa] - image).norm() > WEDGE_SHAPE_TOLERANCE * size {
+            return Err((
+                first,
+                MeshError::invalid(format!(
+                    "wedge: cell {c}'s faces on the two wedge planes (faces {fa} and {fb}) are not one the other rotated about the planes' common line by the wedge angle: the mesh is not a section revolved about an axis"
+                )),
+            ));
+        }
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -503,12 +503,9 @@ fn build_body(
         .filter(|(_, s)| matches!(s, Some(BoundarySpec::Wedge)))
         .map(|(i, _)| i)
         .collect();
-    let rotations = wedge_rotations(&mesh, &geom, &wedge_patches).map_err(|e| {
+    let rotations = wedge_rotations(&mesh, &geom, &wedge_patches).map_err(|(p, e)| {
         src.error(
-            &format!(
-                "body[{bi}].boundary.{}",
-                mesh.patches[wedge_patches[0]].name
-            ),
+            &format!("body[{bi}].boundary.{}", mesh.patches[p].name),
             e.to_string(),
         )
     })?;

@@ -294,22 +294,31 @@ const HARMONIC_SWEEP_TOLERANCE: f64 = 1e-3;
 
 /// Directions (0, 1, 2) that are not solved: the out-of-plane axis of a
 /// 2-D model (every `empty` face normal along it) and the circumferential
-/// axis of an axisymmetric wedge (every `wedge` face normal within 8° of it;
+/// axis of an axisymmetric wedge (the normal of its mid-plane along it:
 /// the displacement has no swirl component, as OpenFOAM's solution
-/// directions). Such a direction must be shared by every deformable body.
+/// directions; a wedge whose mid-plane is not a coordinate plane, e.g.
+/// from 0° to 5°, solves all three components — with the 8° margin on the
+/// face normals this used to be, its cells lost the circumferential part
+/// of their radial motion). Such a direction must be shared by every
+/// deformable body.
 fn unsolved_directions(bodies: &[Body]) -> [bool; 3] {
     // (any face seen, axis shared by all faces) for empty and for wedge faces
     let mut kinds = [(false, [true; 3]); 2];
     for b in bodies.iter().filter(|b| !b.rigid) {
         for (p, c) in b.mesh.patches.iter().zip(&b.momentum.conditions) {
-            let (kind, threshold) = match c {
-                fv_discretise::PatchCondition::Empty => (0, 1.0 - 1e-6),
-                fv_discretise::PatchCondition::Wedge(_) => (1, 0.99),
+            let (kind, rotations) = match c {
+                fv_discretise::PatchCondition::Empty => (0, None),
+                fv_discretise::PatchCondition::Wedge(r) => (1, Some(r)),
                 _ => continue,
             };
-            for f in p.faces() {
+            for (i, f) in p.faces().enumerate() {
                 kinds[kind].0 = true;
-                let n = b.geom.face_normals[f];
+                let threshold = 1.0 - 1e-6;
+                // a wedge face's rotation takes the mid-plane's normal onto its own
+                let n = match rotations {
+                    Some(r) => r[i].transpose() * b.geom.face_normals[f],
+                    None => b.geom.face_normals[f],
+                };
                 for d in 0..3 {
                     if n[d].abs() < threshold {
                         kinds[kind].1[d] = false;

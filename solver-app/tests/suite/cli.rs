@@ -325,6 +325,29 @@ fn empty_needs_a_body_one_cell_thick() {
     );
 }
 
+/// `wedge` on patches that are not the two planes of a one-cell wedge is
+/// refused, naming the patch: two perpendicular sides of a box 4 cells
+/// thick (it solved it as a 90° wedge), and a third wedge patch besides
+/// them (a face on neither plane).
+#[test]
+fn wedge_needs_a_one_cell_wedge() {
+    let dir = tempfile::tempdir().unwrap();
+    let box_wedge = format!(
+        "{GOOD}[body.boundary.xmin]\ntype = \"wedge\"\n[body.boundary.zmin]\ntype = \"wedge\"\n"
+    );
+    expect_input_error(
+        dir.path(),
+        box_wedge.as_bytes(),
+        &["body[0].boundary.xmin", "one cell thick around its axis"],
+    );
+    let third = format!("{box_wedge}[body.boundary.zmax]\ntype = \"wedge\"\n");
+    expect_input_error(
+        dir.path(),
+        third.as_bytes(),
+        &["body[0].boundary.zmax", "lies on neither wedge plane"],
+    );
+}
+
 /// A results folder that cannot be created is the input's fault (exit 2),
 /// named by where it came from: `--output` or `output.directory`.
 #[test]

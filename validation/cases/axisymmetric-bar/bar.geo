@@ -6,10 +6,14 @@
 // first ring is thin (the near-axis cells are where a wedge is hardest).
 //
 //   gmsh -3 -format msh41 bar.geo -o bar.msh
+//   gmsh -3 -format msh41 -setnumber start 0 bar.geo -o bar-offset.msh
+//
+// (`start`: the angle of the back plane, degrees; bar-offset.msh spans 0°
+// to 5°, its mid-plane off the coordinate planes.)
 //
 // Patches: "bottom" (y = 0), "top" (y = L), "outer" (r = a),
 // "front"/"back" (the wedge planes). No patch on the axis. Volume "bar".
-DefineConstant[ nr = 8, ny = 6, angle = 2.5, grading = 0.8 ];
+DefineConstant[ nr = 8, ny = 6, angle = 2.5, grading = 0.8, start = -2.5 ];
 a = 1; L = 2;
 Point(1) = {0, 0, 0};
 Point(2) = {a, 0, 0};
@@ -28,7 +32,7 @@ Transfinite Surface{1} = {1, 2, 3, 4};
 Recombine Surface{1};
 
 th = angle * Pi / 180;
-Rotate {{0, 1, 0}, {0, 0, 0}, -th} { Surface{1}; }
+Rotate {{0, 1, 0}, {0, 0, 0}, start * Pi / 180} { Surface{1}; }
 // e[0] the copy of the surface at +angle, e[1] the volume, e[2..] the
 // laterals of curves 1..4
 e[] = Extrude {{0, 1, 0}, {0, 0, 0}, 2 * th} { Surface{1}; Layers{1}; Recombine; };

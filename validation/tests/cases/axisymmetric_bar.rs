@@ -70,7 +70,10 @@ fn a_bar_pulled_along_its_axis_is_uniformly_stressed_on_a_wedge() {
 #[test]
 fn a_bar_on_a_wedge_off_the_coordinate_planes_moves_radially() {
     let (dir, text) = read_case("axisymmetric-bar", "case.toml");
-    assert!(text.contains("\"bar.msh\""), "case.toml no longer names bar.msh");
+    assert!(
+        text.contains("\"bar.msh\""),
+        "case.toml no longer names bar.msh"
+    );
     let text = text.replace("\"bar.msh\"", "\"bar-offset.msh\"");
     let out = run_toml(&text, &dir);
     assert!(out.converged, "{:?}", out.failure);

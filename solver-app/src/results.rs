@@ -261,7 +261,10 @@ pub fn patch_reaction(bodies: &[Body], bi: usize, p: usize, contacts: &ContactSe
 /// The wedge of an axisymmetric model: (axis direction, opening angle in
 /// radians) from the `wedge` faces of the deformable bodies — the angle
 /// between the two wedge planes, whose outward normals are the most
-/// opposite pair. `None` without wedge faces.
+/// opposite pair. The axis points along its largest component's positive
+/// sense (+y for a wedge about y), whichever wedge face comes first, so
+/// that the logged axial forces keep their sign. `None` without wedge
+/// faces.
 pub fn wedge_of(bodies: &[Body]) -> Option<(Vector, f64)> {
     let mut normals = Vec::new();
     for b in bodies.iter().filter(|b| !b.rigid) {
@@ -278,6 +281,8 @@ pub fn wedge_of(bodies: &[Body]) -> Option<(Vector, f64)> {
         .min_by(|a, b| a.dot(&na).total_cmp(&b.dot(&na)))?;
     let axis = na.cross(&nb);
     let angle = (-na.dot(&nb)).clamp(-1.0, 1.0).acos();
+    let largest = axis.iamax();
+    let axis = if axis[largest] < 0.0 { -axis } else { axis };
     (axis.norm() > 1e-12 && angle > 0.0).then(|| (axis.normalize(), angle))
 }
 

@@ -215,8 +215,12 @@ pub fn wedge_rotations(
 /// Largest angle (rad) between a wedge face's normal and its plane's, and
 /// largest distance of a face centre from its plane or from the rotated
 /// image of its cell's face on the other plane, relative to the face size
-/// (√area): beyond these the body is not a wedge.
-const WEDGE_SHAPE_TOLERANCE: f64 = 1e-4;
+/// (√area): beyond these the body is not a wedge. Loose enough for points
+/// written with 6 significant digits (OpenFOAM's default precision) on
+/// faces 1/1000 of the coordinates' magnitude (5e-4), tight enough for
+/// what it is for: faces 90° off (a third or curved patch) or a cell's two
+/// faces not images of each other.
+const WEDGE_SHAPE_TOLERANCE: f64 = 1e-2;
 
 /// Checks that the faces of the wedge patches (`rotations` from
 /// [`wedge_rotations`], normals `na`, `nb` of the two planes) make a

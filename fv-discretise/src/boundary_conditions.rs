@@ -229,8 +229,8 @@ const WEDGE_SHAPE_TOLERANCE: f64 = 1e-2;
 /// plane is its face on the other rotated about the planes' common line by
 /// the wedge angle. What a wedge condition models (a field that does not
 /// change around the axis) holds only then; a mesh several cells thick
-/// around the axis, a third patch set to wedge, a curved patch or a plane
-/// tilted off the revolved one gave wrong stresses without a word.
+/// around the axis, a third patch set to wedge, a curved patch or two
+/// sides of a box gave wrong stresses without a word.
 fn check_wedge_shape(
     mesh: &PolyMesh,
     geom: &MeshGeometry,

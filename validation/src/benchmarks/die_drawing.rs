@@ -4,7 +4,7 @@
 //! entry, pulled 0.25 m by that front through a frictionless rigid die of
 //! exit radius r2 = 0.015 m (entry arc R = 0.15 m). One-cell wedge of ±2.5°.
 //! The pulling force against the steady drawing force of eq. 5.1.
-use super::{read_case, swap_master_slave, RunCost};
+use super::{read_case_on_mesh, swap_master_slave, RunCost};
 use crate::run_toml_in_with_history;
 
 /// Cylinder radius r1, m.
@@ -106,14 +106,11 @@ pub enum CylinderMesh {
 /// `steps` scaled to keep the step), with the die as master or
 /// (`swapped`) as slave.
 pub fn run(mesh: CylinderMesh, end: f64, swapped: bool) -> DieRun {
-    let (dir, mut text) = read_case("die-drawing", "case.toml");
-    if mesh == CylinderMesh::Fine {
-        assert!(
-            text.contains("\"cylinder.msh\""),
-            "die-drawing/case.toml no longer names cylinder.msh"
-        );
-        text = text.replace("\"cylinder.msh\"", "\"cylinder-fine.msh\"");
-    }
+    let cylinder = match mesh {
+        CylinderMesh::Benchmark => "cylinder.msh",
+        CylinderMesh::Fine => "cylinder-fine.msh",
+    };
+    let (dir, mut text) = read_case_on_mesh("die-drawing", "case.toml", "cylinder.msh", cylinder);
     if swapped {
         text = swap_master_slave(&text, "die/contact", "cylinder/outer");
     }

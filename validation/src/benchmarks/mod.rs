@@ -34,6 +34,21 @@ pub fn read_case(case: &str, file: &str) -> (PathBuf, String) {
     (dir, text)
 }
 
+/// Case `file` of `validation/cases/<case>` with its mesh file `from`
+/// replaced by `to` (a refined or moved variant beside it); panics when
+/// the case no longer names `from`, so that the variant cannot silently
+/// run the original mesh.
+pub fn read_case_on_mesh(case: &str, file: &str, from: &str, to: &str) -> (PathBuf, String) {
+    let (dir, text) = read_case(case, file);
+    let quoted = format!("\"{from}\"");
+    assert!(
+        text.contains(&quoted),
+        "{case}/{file} no longer names {from}"
+    );
+    let text = text.replace(&quoted, &format!("\"{to}\""));
+    (dir, text)
+}
+
 /// The case text with the `[[contact]]` surfaces `master` and `slave`
 /// (`"<body>/<patch>"`) exchanged.
 pub fn swap_master_slave(text: &str, master: &str, slave: &str) -> String {

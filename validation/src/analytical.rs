@@ -315,3 +315,89 @@ mod large_strain_tests {
         assert!(((1.0 - s) / 1e-6 - 0.3).abs() < 1e-4, "{s}");
     }
 }
+
+/// Thick-walled sphere (inner radius `a`, outer `b`) of an elastic–
+/// perfectly plastic von Mises (= Tresca, σ_θθ = σ_φφ) solid under internal
+/// pressure `p`, small strain (Hill 1950, ch. V; Chakrabarty, *Theory of
+/// Plasticity*, §5.3). The plastic zone a ≤ r ≤ c has σ_θθ − σ_rr = σ_Y;
+/// its radius c is the root of p = 2σ_Y ln(c/a) + (2σ_Y/3)(1 − c³/b³), and
+/// the elastic shell c ≤ r ≤ b is the Lamé sphere at yield on its inside.
+#[derive(Debug, Clone, Copy)]
+pub struct PlasticSphere {
+    /// Inner radius a.
+    pub a: f64,
+    /// Outer radius b.
+    pub b: f64,
+    /// Yield stress σ_Y.
+    pub yield_stress: f64,
+    /// Internal pressure p.
+    pub p: f64,
+    /// Radius c of the elastic–plastic boundary (a while elastic).
+    pub c: f64,
+}
+
+impl PlasticSphere {
+    /// The solution at pressure `p`; `None` at or beyond the limit pressure
+    /// 2σ_Y ln(b/a), where the whole wall yields.
+    pub fn new(a: f64, b: f64, yield_stress: f64, p: f64) -> Option<Self> {
+        let sy = yield_stress;
+        let pressure_at =
+            |c: f64| 2.0 * sy * (c / a).ln() + 2.0 * sy / 3.0 * (1.0 - (c / b).powi(3));
+        if !(p < pressure_at(b)) {
+            return None;
+        }
+        let c = if p <= pressure_at(a) {
+            a
+        } else {
+            // pressure_at increases with c: bisection
+            let (mut lo, mut hi) = (a, b);
+            for _ in 0..200 {
+                let mid = 0.5 * (lo + hi);
+                if pressure_at(mid) < p {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            0.5 * (lo + hi)
+        };
+        Some(PlasticSphere {
+            a,
+            b,
+            yield_stress: sy,
+            p,
+            c,
+        })
+    }
+
+    /// (σ_rr, σ_θθ) at radius `r`.
+    pub fn stress(&self, r: f64) -> (f64, f64) {
+        let (a, b, c, sy) = (self.a, self.b, self.c, self.yield_stress);
+        if self.c == a {
+            return lame_sphere_stress(a, b, self.p, r);
+        }
+        if r < c {
+            let srr = -self.p + 2.0 * sy * (r / a).ln();
+            (srr, srr + sy)
+        } else {
+            let k = 2.0 * sy / 3.0 * c.powi(3);
+            (
+                -k * (r.powi(-3) - b.powi(-3)),
+                k * (0.5 * r.powi(-3) + b.powi(-3)),
+            )
+        }
+    }
+
+    /// Radial displacement of the outer surface for Young's modulus `e` and
+    /// Poisson's ratio `nu`: the Lamé shell c..b under the pressure
+    /// (2σ_Y/3)(1 − c³/b³) on its inside, u(b) = σ_Y (1 − ν) c³/(E b²) once
+    /// yielding (3 p a³ b (1 − ν)/(2 E (b³ − a³)) while elastic).
+    pub fn outer_displacement(&self, e: f64, nu: f64) -> f64 {
+        let (a, b, c) = (self.a, self.b, self.c);
+        if c == a {
+            3.0 * self.p * a.powi(3) * b * (1.0 - nu) / (2.0 * e * (b.powi(3) - a.powi(3)))
+        } else {
+            self.yield_stress * (1.0 - nu) * c.powi(3) / (e * b * b)
+        }
+    }
+}

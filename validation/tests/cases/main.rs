@@ -11,6 +11,7 @@ mod concentric_spheres;
 mod contact_patch;
 mod die_drawing;
 mod dynamics;
+mod elastoplastic_sphere;
 mod flat_punch;
 mod force_control;
 mod hertz_cylinder;

@@ -15,6 +15,23 @@ use crate::segregated::{IncrementInfo, SegregatedSolver, SolveError};
 /// Largest number of times a failed increment is halved and redone.
 const MAX_CUTBACKS: usize = 4;
 
+/// Whether the problem is linear in the load: every deformable body
+/// small-strain (Hooke's law on the initial mesh) without force control or
+/// inertia, and no contact. The outer iteration of a linear problem, and
+/// its residual relative to the increment's displacement, do not depend on
+/// the size of the step, so halving a step that failed to converge only
+/// repeats the failure (a diverged attempt is still redone: the retry
+/// starts more relaxed).
+fn is_linear(bodies: &[Body], contacts: &ContactSet) -> bool {
+    contacts.is_empty()
+        && bodies.iter().all(|b| {
+            b.rigid
+                || (!b.momentum.law.is_updated_lagrangian()
+                    && b.force_controls.is_empty()
+                    && b.momentum.inertia.is_none())
+        })
+}
+
 /// Command-line options of `fvc run`.
 #[derive(Debug, Clone, Default)]
 pub struct RunOptions {
@@ -245,6 +262,7 @@ fn run_case_noting(
     let reassemble_every_increment = bodies
         .iter()
         .any(|b| !b.rigid && b.momentum.law.is_updated_lagrangian());
+    let linear = is_linear(&bodies, &contacts);
     let mut t_prev = 0.0;
     let mut dt_prev = case.time.dt();
     // the change of the prescribed values over a step (predictor), and the
@@ -358,7 +376,13 @@ fn run_case_noting(
                 summary.coupling_switched.push(note);
                 continue;
             }
-            if failed && !opts.no_cutbacks && cuts < MAX_CUTBACKS {
+            if let (true, Ok(info)) = (failed && linear && !opts.no_cutbacks, &attempt) {
+                log.warn(&format!(
+                    "increment {k}: no convergence in {} outer iterations ({}); not redone in smaller steps: the problem is linear (small strain, Hooke's law, no contact, no force control, no inertia), and its outer iteration converges no faster for a smaller load step; raise [solver] max_outer, or loosen tolerance",
+                    info.outer_iterations,
+                    info.shortfall(case.solver.tolerance)
+                ));
+            } else if failed && !opts.no_cutbacks && cuts < MAX_CUTBACKS {
                 let why = match &attempt {
                     Ok(info) => format!(
                         "no convergence in {} outer iterations",

@@ -635,14 +635,21 @@ value = [0, 0, 0]
 }
 
 /// Runs GOOD with `max_outer = 2` (every attempt fails, every cut-back
-/// too) under the given `on_nonconvergence`; returns the exit code and the
-/// (time, block/ymax:Fy) rows of history.csv.
-fn run_unconverged(policy: &str) -> (i32, Vec<(f64, f64)>, String) {
+/// too) under the given `on_nonconvergence`, `large` selecting the updated
+/// Lagrangian form (nonlinear, so failed steps are cut back); returns the
+/// exit code and the (time, block/ymax:Fy) rows of history.csv.
+fn run_unconverged(policy: &str, large: bool) -> (i32, Vec<(f64, f64)>, String) {
     let dir = tempfile::tempdir().unwrap();
+    let strain = if large {
+        "[analysis]\nstrain = \"large\"\n"
+    } else {
+        ""
+    };
     let case = GOOD.replace(
         "tolerance = 1e-6",
         &format!("tolerance = 1e-12\nmax_outer = 2\non_nonconvergence = \"{policy}\""),
     );
+    let case = case.replacen("[time]", &format!("{strain}[time]"), 1);
     let (code, outdir, err) = run_quietly(dir.path(), case.as_bytes());
     let hist = std::fs::read_to_string(outdir.join("block/history.csv")).unwrap();
     let mut lines = hist.lines();
@@ -664,7 +671,7 @@ fn run_unconverged(policy: &str) -> (i32, Vec<(f64, f64)>, String) {
 #[test]
 fn unconverged_sub_steps_are_reported_at_their_own_time() {
     // `continue` warns and goes on: exit 0 (CASE_FORMAT.md, "Exit codes")
-    let (code, rows, err) = run_unconverged("continue");
+    let (code, rows, err) = run_unconverged("continue", true);
     assert_eq!(code, 0, "{err}");
     let times: Vec<f64> = rows.iter().map(|r| r.0).collect();
     assert_eq!(times, vec![0.5, 1.0], "{err}");
@@ -673,10 +680,31 @@ fn unconverged_sub_steps_are_reported_at_their_own_time() {
     let fy = rows[1].1;
     assert!(fy < -2.0, "reaction at t = 1: {fy}");
 
-    let (code, rows, err) = run_unconverged("abort");
+    let (code, rows, err) = run_unconverged("abort", true);
     assert_eq!(code, 1, "{err}");
     assert_eq!(rows.len(), 1, "{err}");
     assert!((rows[0].0 - 0.5 / 16.0).abs() < 1e-12, "{rows:?}");
+}
+
+/// A linear problem (GOOD: small strain, Hooke's law, no contact) that
+/// fails to converge is not cut back — a smaller step converges no faster
+/// — and says so; it stops at the increment's own time.
+#[test]
+fn a_linear_problem_is_not_cut_back() {
+    let (code, rows, err) = run_unconverged("abort", false);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("not redone in smaller steps: the problem is linear"),
+        "{err}"
+    );
+    assert!(!err.contains("redone in steps of"), "{err}");
+    assert_eq!(rows.len(), 1, "{err}");
+    assert!((rows[0].0 - 0.5).abs() < 1e-12, "{rows:?}");
+    // under `continue` both increments are kept
+    let (code, rows, err) = run_unconverged("continue", false);
+    assert_eq!(code, 0, "{err}");
+    let times: Vec<f64> = rows.iter().map(|r| r.0).collect();
+    assert_eq!(times, vec![0.5, 1.0], "{err}");
 }
 
 /// A plane Gmsh mesh (`gmsh -2`): a 2 × 1 plate of two triangles (one

@@ -4,8 +4,8 @@
 //! PlasticSphere`, Hill 1950): the stresses of the plastic and the elastic
 //! zone, the radius of the elastic–plastic boundary and the outer
 //! surface's displacement. Steel-like, so the strains stay near 0.4 % and
-//! the small-strain solution applies to the large-strain model (its
-//! geometric change shows as ≲ 0.5 % in the stresses).
+//! the small-strain solution applies to the (updated Lagrangian) model once
+//! it is written on the current radii.
 use validation::analytical::PlasticSphere;
 use validation::run_toml;
 

@@ -75,7 +75,9 @@ pub fn extrude_plane(coords: &[Vector], plane: &PlaneElements) -> Result<Extrude
     {
         return Err(format!(
             "the mesh has no volume elements, and its 2D elements do not lie in one plane z = const \
-             (z from {:.6e} to {:.6e}): a plane mesh is extruded only from the x–y plane",
+             (z from {:.6e} to {:.6e}): a plane mesh is extruded only from the x–y plane. For a \
+             3D mesh, mesh the volume (gmsh -3); if the .geo defines physical groups, Gmsh saves \
+             only the elements in them: add a Physical Volume, or set Mesh.SaveAll = 1",
             lo.z, hi.z
         ));
     }

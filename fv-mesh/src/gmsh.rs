@@ -38,6 +38,15 @@ pub fn read_gmsh_bytes(bytes: &[u8], path: &Path) -> Result<PolyMesh, MeshError>
     };
     let header = parse_header(bytes).map_err(|m| err(None, m))?;
     check_not_truncated(bytes).map_err(|m| err(None, m))?;
+    if let Some(at) = find_section_line(bytes, header.body_start, b"$PartitionedEntities") {
+        return Err(err(
+            (!header.binary).then(|| line_of(bytes, at)),
+            "a partitioned mesh ($PartitionedEntities: gmsh -part, or Mesh.NbPartitions > 0) is not \
+             supported: its physical groups are attached to the partition entities; re-export it \
+             without partitioning"
+                .into(),
+        ));
+    }
     let names = parse_physical_names(bytes, &header).map_err(|(line, m)| err(line, m))?;
     let patched = force_sparse_node_tags(bytes, &header).map_err(|m| err(None, m))?;
 
@@ -46,12 +55,24 @@ pub fn read_gmsh_bytes(bytes: &[u8], path: &Path) -> Result<PolyMesh, MeshError>
     }));
     let msh = match parsed {
         Ok(Ok(msh)) => msh,
-        Ok(Err((line, m))) => return Err(err(line, m)),
-        Err(_) => {
-            return Err(err(
-                None,
-                "malformed MSH 4.1 content (the MSH parser gave up on it)".into(),
-            ))
+        failed => {
+            // an element type the parser does not know (some second-order
+            // ones) fails it before `convert` can name the type
+            if let Some((t, line)) = unsupported_element_type(bytes, &header) {
+                return Err(MeshError::Unsupported(format!(
+                    "{}{}: {}",
+                    path.display(),
+                    line.map(|l| format!(":{l}")).unwrap_or_default(),
+                    unsupported_type_message(t)
+                )));
+            }
+            return Err(match failed {
+                Ok(Err((line, m))) => err(line, m),
+                _ => err(
+                    None,
+                    "malformed MSH 4.1 content (the MSH parser gave up on it)".into(),
+                ),
+            });
         }
     };
     convert(msh, &names, path)
@@ -201,6 +222,103 @@ fn line_of(bytes: &[u8], off: usize) -> usize {
         .iter()
         .filter(|&&b| b == b'\n')
         .count()
+}
+
+/// Nodes of the Gmsh element types that [`convert`] reads (point, line,
+/// triangle, quadrangle, tetrahedron, hexahedron, prism, pyramid).
+fn linear_element_nodes(gmsh_type: i32) -> Option<usize> {
+    match gmsh_type {
+        15 => Some(1),
+        1 => Some(2),
+        2 => Some(3),
+        3 | 4 => Some(4),
+        5 => Some(8),
+        6 => Some(6),
+        7 => Some(5),
+        _ => None,
+    }
+}
+
+/// Why an element type other than those of [`linear_element_nodes`] is
+/// refused.
+fn unsupported_type_message(gmsh_type: i32) -> String {
+    let name = match gmsh_type {
+        8 => " (3-node line)",
+        9 => " (6-node triangle)",
+        10 => " (9-node quadrangle)",
+        11 => " (10-node tetrahedron)",
+        12 => " (27-node hexahedron)",
+        13 => " (18-node prism)",
+        14 => " (14-node pyramid)",
+        16 => " (8-node quadrangle)",
+        17 => " (20-node hexahedron)",
+        18 => " (15-node prism)",
+        19 => " (13-node pyramid)",
+        _ => "",
+    };
+    format!(
+        "element type {gmsh_type}{name} is not supported: only linear elements are (tetrahedra, \
+         hexahedra, prisms, pyramids; triangles and quadrangles on the boundary); re-mesh with \
+         Mesh.ElementOrder = 1"
+    )
+}
+
+/// The first element type in the `$Elements` section that
+/// [`linear_element_nodes`] does not know, with its line (ascii files), by
+/// walking the block headers; `None` when there is none or the section
+/// cannot be walked.
+fn unsupported_element_type(bytes: &[u8], header: &Header) -> Option<(i32, Option<usize>)> {
+    let start = find_section_line(bytes, header.body_start, b"$Elements")?;
+    let mut pos = start + b"$Elements".len();
+    pos += bytes[pos..].iter().position(|&b| b == b'\n')? + 1;
+    if header.binary {
+        let st = header.size_t;
+        let size_at = |p: usize| -> Option<u64> {
+            let b = bytes.get(p..p + st)?;
+            Some(if st == 8 {
+                u64::from_le_bytes(b.try_into().ok()?)
+            } else {
+                u32::from_le_bytes(b.try_into().ok()?) as u64
+            })
+        };
+        let int_at = |p: usize| -> Option<i32> {
+            Some(i32::from_le_bytes(bytes.get(p..p + 4)?.try_into().ok()?))
+        };
+        let blocks = size_at(pos)?;
+        pos += 4 * st;
+        for _ in 0..blocks {
+            let t = int_at(pos + 8)?;
+            let n = size_at(pos + 12)? as usize;
+            pos += 12 + st;
+            let per = linear_element_nodes(t).map(|k| k + 1);
+            match per {
+                Some(per) => pos = pos.checked_add(n.checked_mul(per)?.checked_mul(st)?)?,
+                None => return Some((t, None)),
+            }
+        }
+        None
+    } else {
+        let text = std::str::from_utf8(&bytes[pos..]).ok()?;
+        let mut lines = text.lines();
+        let blocks: usize = lines.next()?.split_whitespace().next()?.parse().ok()?;
+        let mut line = line_of(bytes, pos) + 1;
+        for _ in 0..blocks {
+            let head = lines.next()?;
+            let v: Vec<i64> = head
+                .split_whitespace()
+                .map(|x| x.parse().ok())
+                .collect::<Option<Vec<i64>>>()?;
+            let (t, n) = (*v.get(2)? as i32, *v.get(3)? as usize);
+            if linear_element_nodes(t).is_none() {
+                return Some((t, Some(line)));
+            }
+            for _ in 0..n {
+                lines.next()?;
+            }
+            line += n + 1;
+        }
+        None
+    }
 }
 
 /// `(dimension, tag) → name` of physical groups.
@@ -695,6 +813,35 @@ fn assemble(
     names: &PhysicalNames,
     path: &Path,
 ) -> Result<PolyMesh, MeshError> {
+    // a boundary face in two groups would take the condition of one of them
+    // only; the other would silently lose it
+    let mut group_of: HashMap<Vec<u32>, usize> = HashMap::new();
+    for (gi, (name, faces)) in boundary_groups.iter().enumerate() {
+        for f in faces {
+            let mut key = f.clone();
+            key.sort_unstable();
+            key.dedup();
+            if let Some(&other) = group_of.get(&key) {
+                if other != gi {
+                    return Err(MeshError::Parse {
+                        path: path.to_path_buf(),
+                        line: None,
+                        message: format!(
+                            "a boundary face (nodes at {}) is in two physical groups, '{}' and \
+                             '{name}': a face takes one boundary condition, so the groups must not \
+                             share faces",
+                            f.iter()
+                                .map(|&n| format!("{:?}", points[n as usize].as_slice()))
+                                .collect::<Vec<_>>()
+                                .join(" "),
+                            boundary_groups[other].0
+                        ),
+                    });
+                }
+            }
+            group_of.insert(key, gi);
+        }
+    }
     let mut zones: BTreeMap<i32, Vec<u32>> = BTreeMap::new();
     for (ci, ent) in cell_entity.iter().enumerate() {
         for &p in entity_phys.get(ent).into_iter().flatten() {
@@ -830,6 +977,80 @@ $EndElements
         assert_eq!(m.cell_zones[0].cells, vec![0]);
         let shapes = m.cell_shapes.as_ref().expect("shapes");
         assert_eq!(shapes[0].kind, CellType::Hexa);
+    }
+
+    /// A face in two physical groups would keep the condition of one only:
+    /// refused, naming both.
+    #[test]
+    fn a_face_in_two_groups_is_an_error() {
+        let text = HEX.replace("2 0 0 1 1 1 1 1 2 0", "2 0 0 1 1 1 1 2 2 1 0");
+        let e = read(&text).expect_err("overlapping groups");
+        let m = e.to_string();
+        assert!(
+            m.contains("two physical groups") && m.contains("'bottom'") && m.contains("'top'"),
+            "{m}"
+        );
+    }
+
+    /// A physical group named `defaultFaces` takes the faces in no group:
+    /// one patch of that name.
+    #[test]
+    fn a_group_named_default_faces_takes_the_ungrouped_faces() {
+        let text = HEX.replace("\"sides\"", "\"defaultFaces\"");
+        let m = read(&text).expect("reads");
+        assert_eq!(
+            patch_sizes(&m),
+            vec![
+                ("bottom".into(), 1),
+                ("top".into(), 1),
+                ("defaultFaces".into(), 4)
+            ]
+        );
+    }
+
+    /// A partitioned file keeps its physical groups on the partition
+    /// entities: refused with advice, not read as a mesh without groups.
+    #[test]
+    fn a_partitioned_mesh_is_refused() {
+        let text = HEX.replace(
+            "$Nodes",
+            "$PartitionedEntities\n2\n0\n0 0 0 0\n$EndPartitionedEntities\n$Nodes",
+        );
+        let e = read(&text).expect_err("partitioned");
+        assert!(e.to_string().contains("partitioned mesh"), "{e}");
+    }
+
+    /// Element types the parser may not know are found by walking the
+    /// `$Elements` block headers, ascii and binary.
+    #[test]
+    fn second_order_types_are_named_from_the_block_headers() {
+        let text = HEX.replace("3 1 5 1\n", "3 1 13 1\n");
+        let header = parse_header(text.as_bytes()).expect("header");
+        let (t, line) = unsupported_element_type(text.as_bytes(), &header).expect("found");
+        assert_eq!(t, 13);
+        let line = line.expect("ascii line");
+        assert_eq!(text.lines().nth(line - 1), Some("3 1 13 1"));
+        assert!(unsupported_type_message(t).contains("18-node prism"));
+        assert!(unsupported_element_type(HEX.as_bytes(), &header).is_none());
+        // binary, 8-byte size_t: a quadrangle block, then a 14-node pyramid
+        let mut b: Vec<u8> = b"$MeshFormat\n4.1 1 8\n".to_vec();
+        b.extend(1i32.to_le_bytes());
+        b.extend(b"\n$EndMeshFormat\n$Elements\n");
+        for v in [2u64, 2, 1, 2] {
+            b.extend(v.to_le_bytes());
+        }
+        for (dim, t, nodes) in [(2i32, 3i32, 4u64), (3, 14, 14)] {
+            b.extend(dim.to_le_bytes());
+            b.extend(1i32.to_le_bytes());
+            b.extend(t.to_le_bytes());
+            b.extend(1u64.to_le_bytes());
+            for v in 0..=nodes {
+                b.extend(v.to_le_bytes());
+            }
+        }
+        b.extend(b"\n$EndElements\n");
+        let header = parse_header(&b).expect("binary header");
+        assert_eq!(unsupported_element_type(&b, &header), Some((14, None)));
     }
 
     /// Unit cube split along the x-y diagonal into two prisms; the x=0 face is

@@ -385,8 +385,14 @@ impl PolyMesh {
         }
         let n_groups = boundary_groups.len();
         let mut by_group: Vec<Vec<Bface>> = (0..=n_groups).map(|_| Vec::new()).collect();
+        // faces in no group join a group of that name if there is one (two
+        // patches of one name would leave the second without a condition)
+        let unassigned = boundary_groups
+            .iter()
+            .position(|(name, _)| name == "defaultFaces")
+            .unwrap_or(n_groups);
         for b in boundary {
-            let g = group_of.get(&b.key).copied().unwrap_or(n_groups);
+            let g = group_of.get(&b.key).copied().unwrap_or(unassigned);
             by_group[g].push(b);
         }
         let mut faces = Vec::new();

@@ -587,6 +587,12 @@ fn side(
             ),
         )
     })?;
+    if b.mesh.patches[pi].size == 0 {
+        return Err(src.error(
+            key,
+            format!("patch '{body}/{patch}' has no faces, so it cannot be a contact surface"),
+        ));
+    }
     if b.patch_specs[pi].is_some() && !b.rigid {
         return Err(src.error(
             key,

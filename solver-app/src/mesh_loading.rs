@@ -18,6 +18,22 @@ pub fn load_mesh(
                 message,
             } => (path, line, message),
             MeshError::Io { path, source } => (path, None, source.to_string()),
+            // the readers' "unsupported" messages start with the file (and
+            // line), which the input error names itself
+            MeshError::Unsupported(m) => {
+                let rest = m.strip_prefix(&*path.to_string_lossy()).unwrap_or(&m);
+                let (line, rest) = match rest.strip_prefix(':').map(|r| r.split_once(':')) {
+                    Some(Some((l, r))) if l.chars().all(|c| c.is_ascii_digit()) => {
+                        (l.parse().ok(), r)
+                    }
+                    _ => (None, rest.strip_prefix(':').unwrap_or(rest)),
+                };
+                (
+                    path.to_path_buf(),
+                    line,
+                    format!("unsupported: {}", rest.trim_start()),
+                )
+            }
             other => (path.to_path_buf(), None, other.to_string()),
         };
         let mut err = InputError::new(file, msg).at_line(line);

@@ -466,6 +466,25 @@ fn build_body(
                 ),
             ));
         };
+        // a patch without faces carries nothing: a load or a support on it
+        // would be dropped without a word (a Gmsh physical surface whose
+        // faces all went to another group, or that holds interior faces)
+        if mesh.patches[pi].size == 0
+            && !matches!(
+                bc,
+                BoundarySpec::Symmetry | BoundarySpec::Empty | BoundarySpec::Wedge
+            )
+        {
+            return Err(src.error(
+                &key,
+                format!(
+                    "patch '{name}' of body '{}' has no faces, so nothing would carry its condition \
+                     (in a Gmsh mesh: are its faces in another physical group too, or are they \
+                     interior faces?)",
+                    spec.name
+                ),
+            ));
+        }
         if spec.rigid {
             // a rigid body is not solved: a load on it would be dropped
             let load = match bc {

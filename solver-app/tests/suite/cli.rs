@@ -861,3 +861,40 @@ type = "empty"
         &["body[0].mesh.zone", "no zone named 'plat'", "plate"],
     );
 }
+
+/// Two hexahedra side by side; the physical surface "mid" holds their
+/// shared, interior face (fv-mesh/tests/data/two_cubes_mid.geo).
+const TWO_CUBES_MID: &str = include_str!("../../../fv-mesh/tests/data/two_cubes_mid.msh");
+
+/// A condition on a patch without faces (here a physical surface of
+/// interior faces) would act on nothing: exit 2 naming the patch. The same
+/// mesh runs without it, the patch being empty.
+#[test]
+fn a_condition_on_a_patch_without_faces_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "cubes.msh", TWO_CUBES_MID.as_bytes());
+    let case = r#"title = "cubes"
+[time]
+end = 1.0
+steps = 1
+[[body]]
+name = "solid"
+mesh = { file = "cubes.msh" }
+material = { model = "linear-elastic", E = 200.0, nu = 0.3 }
+[body.boundary.xmin]
+type = "displacement"
+value = [0, 0, 0]
+[body.boundary.xmax]
+type = "traction"
+value = [1.0, 0, 0]
+"#;
+    let with_mid = format!("{case}[body.boundary.mid]\ntype = \"traction\"\nvalue = [5.0, 0, 0]\n");
+    let (code, _, err) = run_quietly(dir.path(), with_mid.as_bytes());
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("body[0].boundary.mid") && err.contains("has no faces"),
+        "{err}"
+    );
+    let (code, _, err) = run_quietly(dir.path(), case.as_bytes());
+    assert_eq!(code, 0, "{err}");
+}

@@ -20,6 +20,7 @@ mod large_strain;
 mod linear_elastic;
 mod neo_hookean;
 mod neo_hookean_plastic;
+mod plane_stress;
 mod st_venant_kirchhoff;
 
 pub use hardening::Hardening;
@@ -30,6 +31,7 @@ pub use large_strain::{
 pub use linear_elastic::LinearElastic;
 pub use neo_hookean::NeoHookean;
 pub use neo_hookean_plastic::NeoHookeanPlastic;
+pub use plane_stress::PlaneStress;
 pub use st_venant_kirchhoff::StVenantKirchhoff;
 
 /// 3×3 tensor.

@@ -153,6 +153,17 @@ impl FieldOutput {
                         t[(0, 2)],
                     ];
                     if b.plane_stress {
+                        // finite strain: the body's stress is the force per
+                        // unit initial thickness, λ_z σ (fv_materials::
+                        // PlaneStress); the Cauchy stress is that over λ_z
+                        if let fv_discretise::StressLaw::UpdatedLagrangian { state, .. } =
+                            &b.momentum.law
+                        {
+                            let lz = state.trial_deformation_gradient()[i][(2, 2)];
+                            if lz > 0.0 {
+                                s.iter_mut().for_each(|c| *c /= lz);
+                            }
+                        }
                         // plane stress: nothing acts out of the plane
                         // (components xx yy zz xy yz xz)
                         for (d, zeroed) in [[0, 3, 5], [1, 3, 4], [2, 4, 5]].iter().enumerate() {

@@ -898,3 +898,85 @@ value = [1.0, 0, 0]
     let (code, _, err) = run_quietly(dir.path(), case.as_bytes());
     assert_eq!(code, 0, "{err}");
 }
+
+/// Finite-strain plane stress reports the Cauchy stress (the momentum
+/// balance carries λ_z σ): a neo-Hookean plate stretched to 1.5 in
+/// uniaxial stress has σ_xx = μ J^(−5/3) (λ² − s²), J = λ s², with s the
+/// root of (K/2)(J² − 1) = (μ/3) J^(−2/3) (λ² − s²), and σ_zz = 0.
+#[test]
+fn finite_strain_plane_stress_reports_the_cauchy_stress() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = r#"title = "sheet"
+[analysis]
+strain = "large"
+[time]
+end = 1.0
+steps = 5
+[solver]
+tolerance = 1e-10
+[[body]]
+name = "sheet"
+mesh = { generator = "box", min = [0, 0, 0], max = [1, 1, 0.1], cells = [3, 3, 1] }
+material = { model = "neo-hookean", E = 1000.0, nu = 0.3, plane_stress = true }
+[body.boundary.xmin]
+type = "symmetry"
+[body.boundary.ymin]
+type = "symmetry"
+[body.boundary.zmin]
+type = "empty"
+[body.boundary.zmax]
+type = "empty"
+[body.boundary.xmax]
+type = "normal-displacement"
+value = { table = [[0.0, 0.0], [1.0, 0.5]] }
+"#;
+    let (code, outdir, err) = run_quietly(dir.path(), case.as_bytes());
+    assert_eq!(code, 0, "{err}");
+    let (mu, k, a) = (1000.0 / 2.6, 1000.0 / 1.2, 1.5f64);
+    let g = |s: f64| {
+        let j = a * s * s;
+        0.5 * k * (j * j - 1.0) - mu / 3.0 * j.powf(-2.0 / 3.0) * (a * a - s * s)
+    };
+    let (mut lo, mut hi) = (0.5, 1.0);
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if g(mid) > 0.0 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    let s = 0.5 * (lo + hi);
+    let sxx = mu * (a * s * s).powf(-5.0 / 3.0) * (a * a - s * s);
+    let file = hdf5::File::open(outdir.join("sheet").join("sheet.h5")).unwrap();
+    let stress = file
+        .dataset("time/5/sheet/stress")
+        .unwrap()
+        .read_2d::<f64>()
+        .unwrap();
+    for c in 0..9 {
+        assert!(
+            (stress[[c, 0]] - sxx).abs() < 1e-6 * sxx,
+            "σ_xx {} vs {sxx}",
+            stress[[c, 0]]
+        );
+        assert!(stress[[c, 1]].abs() < 1e-6 * sxx, "σ_yy {}", stress[[c, 1]]);
+        assert_eq!(stress[[c, 2]], 0.0, "σ_zz");
+    }
+}
+
+/// Finite-strain plane stress solves for the thickness along z: a body
+/// that is not a plane model (no `empty` z faces) is refused.
+#[test]
+fn finite_strain_plane_stress_needs_a_plane_model() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = GOOD
+        .replacen("[time]", "[analysis]\nstrain = \"large\"\n[time]", 1)
+        .replace("nu = 0.3 }", "nu = 0.3, plane_stress = true }");
+    let (code, _, err) = run_quietly(dir.path(), case.as_bytes());
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("body[0].material") && err.contains("plane_stress"),
+        "{err}"
+    );
+}

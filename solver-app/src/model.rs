@@ -163,9 +163,11 @@ pub struct Body {
     /// The condition spec of every patch (`None` = traction-free).
     pub patch_specs: Vec<Option<BoundarySpec>>,
     /// `plane_stress`: the reported stress has no component along the
-    /// out-of-plane axis (`SolidMomentum::unsolved`). The material's λ*
-    /// (eq. 3.17 with λ* = 2μλ/(λ + 2μ)) gives the in-plane stress of
-    /// σ_zz = 0, but its own σ_zz = λ* tr ε is not the body's.
+    /// out-of-plane axis (`SolidMomentum::unsolved`). Under small strain
+    /// Hooke's λ* (eq. 3.17 with λ* = 2μλ/(λ + 2μ)) gives the in-plane
+    /// stress of σ_zz = 0, but its own σ_zz = λ* tr ε is not the body's;
+    /// at finite strain the body's stress is λ_z σ
+    /// (`fv_materials::PlaneStress`), reported divided by λ_z.
     pub plane_stress: bool,
     /// Motion of a rigid body at the current time: translation, rotation
     /// and its origin (from its first displacement or rigid-motion patch).

@@ -163,7 +163,7 @@ fn run_case_noting(
     }
     if let Err(e) = solver.assemble_and_factorise(&bodies, &case.solver.linear) {
         let msg = e.to_string();
-        if let crate::segregated::SolveError::Unconstrained { body, axis } = &e {
+        if let crate::segregated::SolveError::Unconstrained { body, axis, .. } = &e {
             let held_by = explicit_contacts_of(case, body);
             let mut switched = case.clone();
             for &i in &held_by {
@@ -381,6 +381,13 @@ fn run_case_noting(
                     "increment {k}: no convergence in {} outer iterations ({}); not redone in smaller steps: the problem is linear (small strain, Hooke's law, no contact, no force control, no inertia), and its outer iteration converges no faster for a smaller load step; raise [solver] max_outer, or loosen tolerance",
                     info.outer_iterations,
                     info.shortfall(case.solver.tolerance)
+                ));
+            } else if let (true, Err(e @ SolveError::Linear(_))) =
+                (failed && linear && !opts.no_cutbacks, &attempt)
+            {
+                // the matrix of a linear problem does not depend on the step
+                log.warn(&format!(
+                    "increment {k}: {e}; not redone in smaller steps: the problem is linear and its matrix the same for any step. A matrix that is not positive definite usually means that a part of a body is held by nothing: a mesh of parts that are not joined (in Gmsh: BooleanFragments, or Coherence) or a region without a condition"
                 ));
             } else if failed && !opts.no_cutbacks && cuts < MAX_CUTBACKS {
                 let why = match &attempt {

@@ -155,12 +155,15 @@ pub enum SolveError {
     #[error("{0}")]
     Material(String),
     /// The matrix is singular: a body cannot carry load in some direction.
-    #[error("body '{body}' is not held in the {axis} direction: give it a displacement, symmetry or normal-displacement condition (no rigid-body motion can be solved statically)")]
+    #[error("body '{body}'{part} is not held in the {axis} direction: give it a displacement, symmetry or normal-displacement condition (no rigid-body motion can be solved statically)")]
     Unconstrained {
         /// Body name.
         body: String,
         /// "x", "y" or "z".
         axis: &'static str,
+        /// Empty for the whole body; else which face-connected region of
+        /// its mesh, and what that suggests.
+        part: String,
     },
 }
 
@@ -500,6 +503,23 @@ impl SegregatedSolver {
     /// contact stiffness of implicit coupling). With `check`, a component
     /// that gains nothing from the boundary is reported as unconstrained.
     fn fill_diagonals(&mut self, bodies: &[Body], check: bool) -> Result<(), SolveError> {
+        // with `check`: the face-connected regions of every body whose mesh
+        // has more than one, each of which must be held on its own
+        let regions: Vec<Vec<Vec<u32>>> = if check {
+            bodies
+                .iter()
+                .map(|b| {
+                    let r = fv_mesh::face_connected_regions(&b.mesh);
+                    if r.len() > 1 {
+                        r
+                    } else {
+                        Vec::new()
+                    }
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
         for c in 0..3 {
             if self.unsolved[c] {
                 continue;
@@ -521,9 +541,38 @@ impl SegregatedSolver {
                         return Err(SolveError::Unconstrained {
                             body: b.name.clone(),
                             axis: ["x", "y", "z"][c],
+                            part: String::new(),
                         });
                     }
                     self.floating.push((bi, c));
+                }
+                let held_by_contact = b
+                    .momentum
+                    .conditions
+                    .iter()
+                    .any(|c| matches!(c, fv_discretise::PatchCondition::LinearisedContact(_)));
+                if check && b.momentum.inertia.is_none() && !held_by_contact {
+                    let internal = &self.internal_diag[b.offset..b.offset + b.mesh.n_cells];
+                    let all = regions.get(bi).map(|r| r.as_slice()).unwrap_or(&[]);
+                    for (k, region) in all.iter().enumerate() {
+                        let (gain, base) = region.iter().fold((0.0, 0.0), |(g, s), &i| {
+                            let i = i as usize;
+                            (g + slice[i] - internal[i], s + internal[i])
+                        });
+                        if !(gain > 1e-12 * base) {
+                            return Err(SolveError::Unconstrained {
+                                body: b.name.clone(),
+                                axis: ["x", "y", "z"][c],
+                                part: format!(
+                                    " (face-connected region {} of {}, {} cells: a mesh of parts that are not joined — in Gmsh, BooleanFragments or Coherence — or a part that needs a condition of its own; zone = \"region{}\" makes it a body of its own)",
+                                    k + 1,
+                                    all.len(),
+                                    region.len(),
+                                    k + 1
+                                ),
+                            });
+                        }
+                    }
                 }
             }
             // a body held only by implicit contact: a small diagonal keeps

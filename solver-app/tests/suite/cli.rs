@@ -980,3 +980,38 @@ fn finite_strain_plane_stress_needs_a_plane_model() {
         "{err}"
     );
 }
+
+/// Two hexahedra side by side that share no face (two Gmsh volumes not
+/// fragmented; fv-mesh/tests/data/two_cubes_apart.geo): the right one is
+/// held by nothing. Refused before solving (exit 2) naming the region,
+/// instead of a linear-solver breakdown (exit 1).
+#[test]
+fn a_part_of_a_body_held_by_nothing_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    write(
+        dir.path(),
+        "apart.msh",
+        include_bytes!("../../../fv-mesh/tests/data/two_cubes_apart.msh"),
+    );
+    let case = r#"title = "apart"
+[time]
+end = 1.0
+steps = 1
+[[body]]
+name = "solid"
+mesh = { file = "apart.msh" }
+material = { model = "linear-elastic", E = 200.0, nu = 0.3 }
+[body.boundary.xmin]
+type = "displacement"
+value = [0, 0, 0]
+[body.boundary.xmax]
+type = "traction"
+value = [1.0, 0, 0]
+"#;
+    let (code, _, err) = run_quietly(dir.path(), case.as_bytes());
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("region 2 of 2") && err.contains("not held in the x direction"),
+        "{err}"
+    );
+}

@@ -532,11 +532,12 @@ impl SegregatedSolver {
                 let before: f64 = slice.iter().sum();
                 b.momentum.add_boundary_diagonal(&b.mesh, &b.geom, c, slice);
                 let after: f64 = slice.iter().sum();
+                let held_by_contact = b
+                    .momentum
+                    .conditions
+                    .iter()
+                    .any(|c| matches!(c, fv_discretise::PatchCondition::LinearisedContact(_)));
                 if check && b.momentum.inertia.is_none() && !(after > before * (1.0 + 1e-12)) {
-                    let held_by_contact =
-                        b.momentum.conditions.iter().any(|c| {
-                            matches!(c, fv_discretise::PatchCondition::LinearisedContact(_))
-                        });
                     if !held_by_contact {
                         return Err(SolveError::Unconstrained {
                             body: b.name.clone(),
@@ -546,11 +547,6 @@ impl SegregatedSolver {
                     }
                     self.floating.push((bi, c));
                 }
-                let held_by_contact = b
-                    .momentum
-                    .conditions
-                    .iter()
-                    .any(|c| matches!(c, fv_discretise::PatchCondition::LinearisedContact(_)));
                 if check && b.momentum.inertia.is_none() && !held_by_contact {
                     let internal = &self.internal_diag[b.offset..b.offset + b.mesh.n_cells];
                     let all = regions.get(bi).map(|r| r.as_slice()).unwrap_or(&[]);

@@ -210,6 +210,9 @@ pub struct SegregatedSolver {
     diag_work: [Vec<f64>; 3],
     /// (body, component) held by implicit contact only.
     floating: Vec<(usize, usize)>,
+    /// Per body, its face-connected regions when its mesh has more than
+    /// one (empty otherwise); set by the first checked diagonal fill.
+    regions: Option<Vec<Vec<Vec<u32>>>>,
     /// Penalty springs between deformable bodies (implicit contact, workspace).
     springs: Vec<CellSpring>,
     /// (row, col) of the springs' matrix entries, both orders (workspace).
@@ -396,6 +399,7 @@ impl SegregatedSolver {
             internal_diag: vec![0.0; n],
             diag_work: [vec![0.0; n], vec![0.0; n], vec![0.0; n]],
             floating: Vec::new(),
+            regions: None,
             springs: Vec::new(),
             spring_entries: Vec::new(),
             spring_slots: Vec::new(),
@@ -504,21 +508,24 @@ impl SegregatedSolver {
     /// that gains nothing from the boundary is reported as unconstrained.
     fn fill_diagonals(&mut self, bodies: &[Body], check: bool) -> Result<(), SolveError> {
         // with `check`: the face-connected regions of every body whose mesh
-        // has more than one, each of which must be held on its own
-        let regions: Vec<Vec<Vec<u32>>> = if check {
-            bodies
-                .iter()
-                .map(|b| {
-                    let r = fv_mesh::face_connected_regions(&b.mesh);
-                    if r.len() > 1 {
-                        r
-                    } else {
-                        Vec::new()
-                    }
-                })
-                .collect()
+        // has more than one, each of which must be held on its own (found
+        // once: the mesh motion keeps the topology)
+        let regions = if check {
+            self.regions.get_or_insert_with(|| {
+                bodies
+                    .iter()
+                    .map(|b| {
+                        let r = fv_mesh::face_connected_regions(&b.mesh);
+                        if r.len() > 1 {
+                            r
+                        } else {
+                            Vec::new()
+                        }
+                    })
+                    .collect()
+            })
         } else {
-            Vec::new()
+            &Vec::new()
         };
         for c in 0..3 {
             if self.unsolved[c] {

@@ -866,6 +866,31 @@ type = "empty"
 /// shared, interior face (fv-mesh/tests/data/two_cubes_mid.geo).
 const TWO_CUBES_MID: &str = include_str!("../../../fv-mesh/tests/data/two_cubes_mid.msh");
 
+/// The same two hexahedra sharing no face (fv-mesh/tests/data/
+/// two_cubes_apart.geo: two Gmsh volumes not fragmented).
+const TWO_CUBES_APART: &str = include_str!("../../../fv-mesh/tests/data/two_cubes_apart.msh");
+
+/// A body of the two-cube mesh `msh`, held at xmin and pulled at xmax.
+fn two_cubes_case(msh: &str) -> String {
+    format!(
+        r#"title = "cubes"
+[time]
+end = 1.0
+steps = 1
+[[body]]
+name = "solid"
+mesh = {{ file = "{msh}" }}
+material = {{ model = "linear-elastic", E = 200.0, nu = 0.3 }}
+[body.boundary.xmin]
+type = "displacement"
+value = [0, 0, 0]
+[body.boundary.xmax]
+type = "traction"
+value = [1.0, 0, 0]
+"#
+    )
+}
+
 /// A condition on a patch without faces (here a physical surface of
 /// interior faces) would act on nothing: exit 2 naming the patch. The same
 /// mesh runs without it, the patch being empty.
@@ -873,21 +898,7 @@ const TWO_CUBES_MID: &str = include_str!("../../../fv-mesh/tests/data/two_cubes_
 fn a_condition_on_a_patch_without_faces_is_refused() {
     let dir = tempfile::tempdir().unwrap();
     write(dir.path(), "cubes.msh", TWO_CUBES_MID.as_bytes());
-    let case = r#"title = "cubes"
-[time]
-end = 1.0
-steps = 1
-[[body]]
-name = "solid"
-mesh = { file = "cubes.msh" }
-material = { model = "linear-elastic", E = 200.0, nu = 0.3 }
-[body.boundary.xmin]
-type = "displacement"
-value = [0, 0, 0]
-[body.boundary.xmax]
-type = "traction"
-value = [1.0, 0, 0]
-"#;
+    let case = two_cubes_case("cubes.msh");
     let with_mid = format!("{case}[body.boundary.mid]\ntype = \"traction\"\nvalue = [5.0, 0, 0]\n");
     let (code, _, err) = run_quietly(dir.path(), with_mid.as_bytes());
     assert_eq!(code, 2, "{err}");
@@ -988,26 +999,8 @@ fn finite_strain_plane_stress_needs_a_plane_model() {
 #[test]
 fn a_part_of_a_body_held_by_nothing_is_refused() {
     let dir = tempfile::tempdir().unwrap();
-    write(
-        dir.path(),
-        "apart.msh",
-        include_bytes!("../../../fv-mesh/tests/data/two_cubes_apart.msh"),
-    );
-    let case = r#"title = "apart"
-[time]
-end = 1.0
-steps = 1
-[[body]]
-name = "solid"
-mesh = { file = "apart.msh" }
-material = { model = "linear-elastic", E = 200.0, nu = 0.3 }
-[body.boundary.xmin]
-type = "displacement"
-value = [0, 0, 0]
-[body.boundary.xmax]
-type = "traction"
-value = [1.0, 0, 0]
-"#;
+    write(dir.path(), "apart.msh", TWO_CUBES_APART.as_bytes());
+    let case = two_cubes_case("apart.msh");
     let (code, _, err) = run_quietly(dir.path(), case.as_bytes());
     assert_eq!(code, 2, "{err}");
     assert!(

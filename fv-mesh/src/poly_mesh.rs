@@ -606,6 +606,26 @@ impl PolyMesh {
 
 /// Centre and area vector of a polygon by a triangle fan about its point
 /// average (the face-centre construction of §3.2).
+/// Area vector of the polygon `face` whose points are at `point(p)`: the
+/// triangle fan about the point average of [`MeshGeometry`](crate::MeshGeometry)
+/// (the same vector as the geometry computes once the points are moved).
+pub fn polygon_area_vector(face: &[u32], point: impl Fn(usize) -> Vector) -> Vector {
+    let n = face.len();
+    let mut est = Vector::zeros();
+    for &p in face {
+        est += point(p as usize);
+    }
+    est /= n as f64;
+    let mut sum = Vector::zeros();
+    let mut a = point(face[n - 1] as usize) - est;
+    for &p in face {
+        let b = point(p as usize) - est;
+        sum += 0.5 * a.cross(&b);
+        a = b;
+    }
+    sum
+}
+
 pub(crate) fn polygon_centre_area(points: &[Vector], face: &[u32]) -> (Vector, Vector) {
     let n = face.len();
     if n == 3 {

@@ -29,6 +29,13 @@ pub struct ForceControl {
     pub target: Vector,
     /// The prescribed uniform displacement.
     pub displacement: Vector,
+    /// The displacement of the last accepted increment, which every
+    /// attempt at the next one predicts from ([`Self::predict`]): predicted
+    /// from the current one instead, each redone attempt of a cut-back
+    /// added its step to the failed attempt's prediction, and all of them
+    /// diverged (a bar pulled by 0.1 in two increments: the retries of the
+    /// second diverged at outer iteration 3 with steps down to 1/32).
+    accepted: Vector,
     /// The patch force at the last check.
     pub force: Vector,
     /// (displacement, force) of the previous correction.
@@ -95,12 +102,12 @@ impl ForceControl {
     }
 
     /// Predictor at a new target: the step from the force of the last
-    /// increment with the current stiffness.
+    /// accepted increment with the current stiffness.
     fn predict(&mut self, target: Vector) {
         self.target = target;
         let all = [true; 3];
         let du = self.step(&self.force.clone(), all);
-        self.displacement += du;
+        self.displacement = self.accepted + du;
     }
 }
 
@@ -182,6 +189,11 @@ pub struct Body {
     pub wedge_points: Option<WedgePointConstraint>,
     /// Point displacement of the increment (workspace of the mesh motion).
     point_du: Vec<Vector>,
+    /// Points of the traction and pressure patches (updated Lagrangian
+    /// only), whose faces' moved area the loads act on
+    /// ([`Self::update_boundary_values`]), and their increment.
+    loaded_points: Vec<u32>,
+    loaded_du: Vec<Vector>,
     /// Mesh points at the start (updated Lagrangian only), for the points
     /// of patches with a prescribed motion ([`prescribe_patch_points`]).
     initial_points: Vec<Vector>,
@@ -196,6 +208,67 @@ pub struct Body {
 }
 
 impl Body {
+    /// Boundary values of the momentum balance (eqs. 3.19–3.26) for the
+    /// current iterate. Under the updated Lagrangian form the traction and
+    /// pressure faces are first moved as the mesh motion would move them
+    /// (cell-to-point fit, prescribed patch points, wedge and symmetry
+    /// planes), and their loads act on the moved faces' area vectors
+    /// (`SolidMomentum::moved_area`).
+    pub fn update_boundary_values(&mut self) {
+        if !self.rigid {
+            self.measure_loaded_faces();
+            self.momentum.update_boundary_values(&self.mesh, &self.geom);
+        }
+    }
+
+    /// Sets `SolidMomentum::moved_area` of every traction and pressure
+    /// face from the points moved by the current increment.
+    fn measure_loaded_faces(&mut self) {
+        let Some(op) = &self.mesh_motion else {
+            return;
+        };
+        if self.loaded_points.is_empty() {
+            return;
+        }
+        let (du, du_b) = self.momentum.increment();
+        op.interpolate_points(&self.loaded_points, du, du_b, &mut self.loaded_du);
+        for (&p, d) in self.loaded_points.iter().zip(&self.loaded_du) {
+            self.point_du[p as usize] = *d;
+        }
+        prescribe_patch_points(
+            &self.mesh,
+            &self.patch_specs,
+            &self.momentum.conditions,
+            &self.initial_points,
+            self.condition_time,
+            &mut self.point_du,
+        );
+        for (&p, d) in self.loaded_points.iter().zip(self.loaded_du.iter_mut()) {
+            *d = self.point_du[p as usize];
+        }
+        if let Some(w) = &self.wedge_points {
+            w.apply_listed(&self.loaded_points, &mut self.loaded_du);
+        }
+        for (&p, d) in self.loaded_points.iter().zip(&self.loaded_du) {
+            self.point_du[p as usize] = *d;
+        }
+        let ni = self.mesh.n_internal_faces();
+        for (spec, patch) in self.patch_specs.iter().zip(&self.mesh.patches) {
+            if !matches!(
+                spec,
+                Some(BoundarySpec::Traction { .. } | BoundarySpec::Pressure { .. })
+            ) {
+                continue;
+            }
+            for f in patch.faces() {
+                let moved = fv_mesh::polygon_area_vector(self.mesh.face(f), |p| {
+                    self.mesh.points[p] + self.point_du[p]
+                });
+                self.momentum.moved_area[f - ni] = moved / self.geom.face_mag[f];
+            }
+        }
+    }
+
     /// Patches whose reaction force is reported (displacement-like conditions).
     pub fn reported_patches(&self) -> impl Iterator<Item = usize> + '_ {
         self.patch_specs
@@ -264,6 +337,9 @@ impl Body {
     pub fn end_increment(&mut self) -> Result<(), String> {
         if self.rigid {
             return Ok(());
+        }
+        for fc in &mut self.force_controls {
+            fc.accepted = fc.displacement;
         }
         if let Some(op) = &mut self.mesh_motion {
             self.momentum.hold_face_tractions(&self.mesh, &self.geom);
@@ -647,6 +723,22 @@ fn build_body(
             0
         }
     ];
+    let mut loaded_points: Vec<u32> = Vec::new();
+    if mesh_motion.is_some() {
+        for (spec, patch) in patch_specs.iter().zip(&mesh.patches) {
+            if matches!(
+                spec,
+                Some(BoundarySpec::Traction { .. } | BoundarySpec::Pressure { .. })
+            ) {
+                for f in patch.faces() {
+                    loaded_points.extend_from_slice(mesh.face(f));
+                }
+            }
+        }
+        loaded_points.sort_unstable();
+        loaded_points.dedup();
+    }
+    let loaded_du = vec![Vector::zeros(); loaded_points.len()];
     let force_controls = patch_specs
         .iter()
         .enumerate()
@@ -684,6 +776,8 @@ fn build_body(
         mesh_motion,
         wedge_points,
         point_du,
+        loaded_points,
+        loaded_du,
         initial_points,
         condition_time: 0.0,
         force_controls_saved: Vec::new(),
@@ -717,6 +811,7 @@ fn force_control(mesh: &PolyMesh, geom: &MeshGeometry, k: f64, pi: usize) -> For
         patch: pi,
         target: Vector::zeros(),
         displacement: Vector::zeros(),
+        accepted: Vector::zeros(),
         force: Vector::zeros(),
         previous: None,
         stiffness: Tensor::identity() * stiffness,

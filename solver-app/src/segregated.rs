@@ -868,9 +868,8 @@ impl SegregatedSolver {
             // contact surfaces (and u_b* of eq. 4.52) are not one step behind
             let start = Instant::now();
             contacts.track_opposite_cells(bodies);
-            for b in bodies.iter_mut().filter(|b| !b.rigid) {
-                let m = &mut b.momentum;
-                m.update_boundary_values(&b.mesh, &b.geom);
+            for b in bodies.iter_mut() {
+                b.update_boundary_values();
             }
             self.times.lap(Phase::BoundaryValues, start);
             self.contact_change = contacts.update(bodies).map_err(SolveError::Contact)?;
@@ -1359,9 +1358,9 @@ fn update_body_fields(b: &mut Body, params: &MomentumParams) -> BodyUpdate {
     if b.rigid {
         return out;
     }
-    let m = &mut b.momentum;
     let t0 = Instant::now();
-    m.update_boundary_values(&b.mesh, &b.geom);
+    b.update_boundary_values();
+    let m = &mut b.momentum;
     let t1 = Instant::now();
     let bad = m.update_gradient_and_stress(&b.mesh);
     let t2 = Instant::now();

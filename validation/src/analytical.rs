@@ -292,6 +292,71 @@ pub fn elastica_cantilever_tip(k: f64) -> (f64, f64) {
     (1.0 - x, y)
 }
 
+/// Thick-walled tube (inner radius `a`, outer `b`, plane strain) of the
+/// neo-Hookean solid of eq. (2.25) under internal pressure `p` at finite
+/// strain: the current radii (r(a), r(b)) of the inner and outer surface.
+///
+/// With r = f(R), stretches λ_r = f′ and λ_θ = f/R (λ_z = 1), the radial
+/// balance in the reference configuration, dP_r/dR + (P_r − P_θ)/R = 0, of
+/// the first Piola–Kirchhoff stresses P_r = λ_θ σ_r and P_θ = λ_r σ_θ, is
+/// integrated from R = a (σ_r = −p) to R = b by RK4, λ_r following from
+/// (f, P_r) by bisection; f(a) is shot (bisection) to P_r(b) = 0.
+pub fn neo_hookean_pressurised_tube(mu: f64, bulk: f64, a: f64, b: f64, p: f64) -> (f64, f64) {
+    let sigma = |lr: f64, lt: f64| neo_hookean_principal_stress(mu, bulk, [lr, lt, 1.0]);
+    // λ_r from the radial first Piola–Kirchhoff stress at hoop stretch lt
+    // (P_r grows with λ_r)
+    let lambda_r = |pr: f64, lt: f64| {
+        let (mut lo, mut hi) = (0.05, 20.0);
+        for _ in 0..64 {
+            let mid = 0.5 * (lo + hi);
+            if lt * sigma(mid, lt)[0] < pr {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
+    };
+    // state (f, P_r) over R
+    let rhs = |r: f64, y: [f64; 2]| {
+        let lt = y[0] / r;
+        let lr = lambda_r(y[1], lt);
+        let s = sigma(lr, lt);
+        [lr, -(y[1] - lr * s[1]) / r]
+    };
+    let n = 400;
+    let h = (b - a) / n as f64;
+    let shoot = |ra: f64| -> [f64; 2] {
+        let lt = ra / a;
+        let mut y = [ra, -p * lt];
+        let mut r = a;
+        for _ in 0..n {
+            let k1 = rhs(r, y);
+            let k2 = rhs(r + 0.5 * h, std::array::from_fn(|i| y[i] + 0.5 * h * k1[i]));
+            let k3 = rhs(r + 0.5 * h, std::array::from_fn(|i| y[i] + 0.5 * h * k2[i]));
+            let k4 = rhs(r + h, std::array::from_fn(|i| y[i] + h * k3[i]));
+            for i in 0..2 {
+                y[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+            }
+            r += h;
+        }
+        y
+    };
+    // the more the inside opens, the more the outside is pulled: P_r(b)
+    // grows with f(a)
+    let (mut lo, mut hi) = if p >= 0.0 { (a, 3.0 * a) } else { (0.3 * a, a) };
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if shoot(mid)[1] > 0.0 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    let ra = 0.5 * (lo + hi);
+    (ra, shoot(ra)[0])
+}
+
 #[cfg(test)]
 mod large_strain_tests {
     use super::*;
@@ -304,6 +369,31 @@ mod large_strain_tests {
         let (u, v) = elastica_cantilever_tip(2.0);
         assert!((u - 0.16064).abs() < 2e-4, "u/L = {u}");
         assert!((v - 0.49346).abs() < 2e-4, "v/L = {v}");
+    }
+
+    #[test]
+    fn pressurised_tube_small_pressure_limit_is_lame() {
+        // plane-strain Lamé: u(a) = (1+ν) p a² / (E (b² − a²)) ((1−2ν) a + b²/a)
+        let (e, nu, a, b, p) = (1.0, 0.3, 1.0, 2.0, 1e-6);
+        let (mu, bulk) = (e / (2.0 * (1.0 + nu)), e / (3.0 * (1.0 - 2.0 * nu)));
+        let (ra, rb) = neo_hookean_pressurised_tube(mu, bulk, a, b, p);
+        let ua =
+            (1.0 + nu) * p * a * a / (e * (b * b - a * a)) * ((1.0 - 2.0 * nu) * a + b * b / a);
+        let ub = (1.0 + nu) * p * a * a / (e * (b * b - a * a)) * ((1.0 - 2.0 * nu) * b + b);
+        assert!(
+            ((ra - a) / ua - 1.0).abs() < 1e-4,
+            "{} against {ua}",
+            ra - a
+        );
+        assert!(
+            ((rb - b) / ub - 1.0).abs() < 1e-4,
+            "{} against {ub}",
+            rb - b
+        );
+        // finite strain: an independent shooting (scipy solve_ivp, rtol
+        // 1e-11, brentq) gives r(a) = 1.55562 at p = 0.15
+        let (ra, _) = neo_hookean_pressurised_tube(mu, bulk, a, b, 0.15);
+        assert!((ra - 1.55562).abs() < 2e-5, "{ra}");
     }
 
     #[test]

@@ -203,7 +203,7 @@ impl PenaltyParams {
         }
         if master_material.is_none() && slave_material.is_none() {
             return Err(ContactError::InvalidMaterial(
-                "both contact surfaces are rigid: give the material of at least one".into(),
+                "both contact surfaces are rigid: the penalty comes from the deformable side's material, so at least one of the two bodies must be deformable (rigid = false)".into(),
             ));
         }
         if n == 0 {

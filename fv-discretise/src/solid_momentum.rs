@@ -370,6 +370,44 @@ impl SolidMomentum {
         }
     }
 
+    /// Updated Lagrangian: the increment set to the motion
+    /// Δu(x) = (Q − I) x + c of the configuration at the increment's start
+    /// (a rigid motion Q, c carries it to x ↦ Q x + c): the cells, the
+    /// boundary faces, the cell gradient and the normal derivatives, so
+    /// that the first boundary update extrapolates the motion (with the
+    /// gradient of rest, the faces lagged their cells by (Q − I)(x_f − x_P)).
+    /// No-op under small strain.
+    pub fn start_from_motion(
+        &mut self,
+        mesh: &PolyMesh,
+        geom: &MeshGeometry,
+        q: &Tensor,
+        c: &Vector,
+    ) {
+        if !self.law.is_updated_lagrangian() {
+            return;
+        }
+        let ni = mesh.n_internal_faces();
+        let motion = |x: &Vector| q * x + c - x;
+        for ((u, u0), x) in self.u.iter_mut().zip(&self.u_old).zip(&geom.cell_centres) {
+            *u = u0 + motion(x);
+        }
+        for (i, (ub, ub0)) in self.u_b.iter_mut().zip(&self.u_b_old).enumerate() {
+            *ub = ub0 + motion(&geom.face_centres[ni + i]);
+        }
+        let step = q - Tensor::identity();
+        for (i, g) in self.snd_b.iter_mut().enumerate() {
+            *g = step * geom.face_normals[ni + i];
+        }
+        self.grad_u.iter_mut().for_each(|g| *g = step.transpose());
+        for (d, (u, o)) in self.du.iter_mut().zip(self.u.iter().zip(&self.u_old)) {
+            *d = u - o;
+        }
+        for (d, (u, o)) in self.du_b.iter_mut().zip(self.u_b.iter().zip(&self.u_b_old)) {
+            *d = u - o;
+        }
+    }
+
     /// Displacement of cell `i` at the start of the increment (zero under
     /// small strain: the mesh operators act on the total displacement).
     #[inline]
@@ -761,7 +799,9 @@ impl SolidMomentum {
                         let grad_b = grad_at(&g);
                         let (t_b, _) = self.face_traction(o, &grad_b, &n);
                         let t_b = t_b + self.offset_at(b, &grad_b);
-                        let ratio = self.loaded_area(b, &grad_b, &n).norm();
+                        // (a plane-stress body: per unit initial thickness)
+                        let ratio =
+                            self.loaded_area(b, &grad_b, &n).norm() * self.law.thickness_stretch(o);
                         let g_new = g + (t[f - p.start] * ratio - t_b) / self.k;
                         self.snd_b[b] = g_new;
                         extrapolated + g_new * self.dn[f]
@@ -771,7 +811,8 @@ impl SolidMomentum {
                         let grad_b = grad_at(&g);
                         let (t_b, _) = self.face_traction(o, &grad_b, &n);
                         let t_b = t_b + self.offset_at(b, &grad_b);
-                        let target = -self.loaded_area(b, &grad_b, &n) * pr[f - p.start];
+                        let target = -self.loaded_area(b, &grad_b, &n)
+                            * (pr[f - p.start] * self.law.thickness_stretch(o));
                         let g_new = g + (target - t_b) / self.k;
                         self.snd_b[b] = g_new;
                         extrapolated + g_new * self.dn[f]
@@ -1041,11 +1082,15 @@ impl SolidMomentum {
                     PatchCondition::Displacement(_) => self.boundary_sigma_hat(f, b, o, &n) * area,
                     PatchCondition::Traction(t) => {
                         let g = self.boundary_gradient(f, b, o, &n);
-                        t[f - p.start] * self.loaded_area(b, &g, &n).norm() * geom.face_mag[f]
+                        t[f - p.start]
+                            * (self.loaded_area(b, &g, &n).norm()
+                                * geom.face_mag[f]
+                                * self.law.thickness_stretch(o))
                     }
                     PatchCondition::Pressure(pr) => {
                         let g = self.boundary_gradient(f, b, o, &n);
-                        -self.loaded_area(b, &g, &n) * geom.face_mag[f] * pr[f - p.start]
+                        -self.loaded_area(b, &g, &n)
+                            * (geom.face_mag[f] * pr[f - p.start] * self.law.thickness_stretch(o))
                     }
                     PatchCondition::LinearisedContact(lc) => {
                         let i = f - p.start;

@@ -45,6 +45,25 @@ impl StressLaw {
         }
     }
 
+    /// The thickness stretch λ_z of `cell` (its latest evaluated state) by
+    /// which a plane-stress body's balance scales the Cauchy stress (it
+    /// integrates λ_z σ, force per unit initial thickness,
+    /// `fv_materials::PlaneStress`); 1 for every other body.
+    #[inline]
+    pub fn thickness_stretch(&self, cell: usize) -> f64 {
+        match self {
+            StressLaw::UpdatedLagrangian { law, state } if law.per_initial_thickness() => {
+                let lz = state.trial(cell).f[(2, 2)];
+                if lz.is_finite() && lz > 0.0 {
+                    lz
+                } else {
+                    1.0
+                }
+            }
+            _ => 1.0,
+        }
+    }
+
     /// Shear modulus μ.
     pub fn shear_modulus(&self) -> f64 {
         match self {

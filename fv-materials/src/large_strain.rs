@@ -222,6 +222,13 @@ pub trait LargeStrainMaterial: Send + Sync + std::fmt::Debug {
     /// Shear modulus μ.
     fn shear_modulus(&self) -> f64;
 
+    /// Whether the stress this model returns is λ_z σ, the force per unit
+    /// *initial* thickness of a plane-stress body ([`crate::PlaneStress`]);
+    /// false for the three-dimensional models.
+    fn per_initial_thickness(&self) -> bool {
+        false
+    }
+
     /// Virgin state of `n_cells` cells for this model.
     fn new_state(&self, n_cells: usize) -> MaterialState {
         MaterialState::new(n_cells, false)

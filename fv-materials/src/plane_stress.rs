@@ -61,6 +61,9 @@ impl LargeStrainMaterial for PlaneStress {
     fn shear_modulus(&self) -> f64 {
         self.inner.shear_modulus()
     }
+    fn per_initial_thickness(&self) -> bool {
+        true
+    }
     fn new_state(&self, n_cells: usize) -> MaterialState {
         self.inner.new_state(n_cells)
     }

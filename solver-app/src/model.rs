@@ -269,6 +269,37 @@ impl Body {
         }
     }
 
+    /// The motion x ↦ Q x + c that carries the current configuration over
+    /// the step t0 → t1 when the body is held by one rigid-motion patch and
+    /// by no other displacement, force or normal-displacement condition:
+    /// with the patch motion X ↦ R(t)(X − o) + o + T(t),
+    /// Q = R(t1) R(t0)ᵀ and c = o + T(t1) − Q (o + T(t0)).
+    pub fn sole_rigid_motion_step(&self, t0: f64, t1: f64) -> Option<(Tensor, Vector)> {
+        let mut held = self.patch_specs.iter().flatten().filter(|s| {
+            matches!(
+                s,
+                BoundarySpec::Displacement { .. }
+                    | BoundarySpec::NormalDisplacement { .. }
+                    | BoundarySpec::Force { .. }
+                    | BoundarySpec::RigidMotion { .. }
+            )
+        });
+        let (
+            Some(BoundarySpec::RigidMotion {
+                translation,
+                rotation,
+            }),
+            None,
+        ) = (held.next(), held.next())
+        else {
+            return None;
+        };
+        let (tr0, r0, origin) = rigid_motion_at(translation.as_ref(), rotation.as_ref(), t0);
+        let (tr1, r1, _) = rigid_motion_at(translation.as_ref(), rotation.as_ref(), t1);
+        let q = r1 * r0.transpose();
+        Some((q, origin + tr1 - q * (origin + tr0)))
+    }
+
     /// Patches whose reaction force is reported (displacement-like conditions).
     pub fn reported_patches(&self) -> impl Iterator<Item = usize> + '_ {
         self.patch_specs

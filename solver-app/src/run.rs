@@ -92,6 +92,7 @@ fn unwritable(case: &Case, opts: &RunOptions, dir: &Path, e: &dyn std::fmt::Disp
 pub fn set_up_with_contacts(case: &Case) -> Result<(Vec<Body>, ContactSet), InputError> {
     let bodies = set_up(case)?;
     let contacts = ContactSet::new(case, &bodies)?;
+    crate::initial_overlap::check_initial_overlap(case, &bodies, &contacts)?;
     Ok((bodies, contacts))
 }
 
@@ -327,7 +328,7 @@ fn run_case_noting(
                 b.prescribed_values(t1, &mut path_end.kinematic, &mut path_end.loads);
             }
             path.subtract_from(&path_end);
-            solver.set_step(&path);
+            solver.set_step(&path, t0, t1);
             solver.set_divergence_retries(diverged);
             let attempt = solver.solve_increment(&mut bodies, &mut contacts, |outer, res| {
                 if trace_outer {
@@ -376,7 +377,19 @@ fn run_case_noting(
                 summary.coupling_switched.push(note);
                 continue;
             }
-            if let (true, Ok(info)) = (failed && linear && !opts.no_cutbacks, &attempt) {
+            // nothing prescribed changes with time (constant values apply in
+            // full from the first increment): a smaller step of a static
+            // problem is the same problem, and an attempt that merely did
+            // not converge would be repeated as it was
+            let constant_path =
+                !has_inertia && path.kinematic.iter().chain(&path.loads).all(|x| *x == 0.0);
+            if let (true, Ok(info)) = (failed && constant_path && !opts.no_cutbacks, &attempt) {
+                log.warn(&format!(
+                    "increment {k}: no convergence in {} outer iterations ({}); not redone in smaller steps: no prescribed value changes over the step t = {t0:.6e} → {t1:.6e} (a constant value is applied in full from the first increment; give a load or a displacement as a table to ramp it), so a smaller step is the same problem",
+                    info.outer_iterations,
+                    info.shortfall(case.solver.tolerance)
+                ));
+            } else if let (true, Ok(info)) = (failed && linear && !opts.no_cutbacks, &attempt) {
                 log.warn(&format!(
                     "increment {k}: no convergence in {} outer iterations ({}); not redone in smaller steps: the problem is linear (small strain, Hooke's law, no contact, no force control, no inertia), and its outer iteration converges no faster for a smaller load step; raise [solver] max_outer, or loosen tolerance",
                     info.outer_iterations,
@@ -451,9 +464,19 @@ fn run_case_noting(
                     }
                     t0 = t1;
                 }
-                Err(e) => break Err(e),
+                Err(e) => {
+                    // back to the last accepted state (the increment's start,
+                    // or its last converged sub-step): the results and the
+                    // summary report it, not the failed iterate
+                    for b in bodies.iter_mut() {
+                        b.restore_start();
+                    }
+                    contacts.restore_start();
+                    break Err(e);
+                }
             }
         };
+        let increment_start = t_prev;
         t_prev = t;
         match result {
             Ok((info, t)) => {
@@ -541,8 +564,15 @@ fn run_case_noting(
                     }
                 }
                 if !info.converged {
+                    // the iterations of every attempt (the step cut back in
+                    // between) are summed
+                    let attempts = if cuts > 0 {
+                        format!(" over {} attempts", cuts + 1)
+                    } else {
+                        String::new()
+                    };
                     let msg = format!(
-                        "increment {k} did not converge in {} outer iterations ({})",
+                        "increment {k} did not converge in {} outer iterations{attempts} ({})",
                         info.outer_iterations,
                         info.shortfall(case.solver.tolerance)
                     );
@@ -557,7 +587,42 @@ fn run_case_noting(
                     }
                 }
             }
-            Err(e) => failure = Some(format!("increment {k}: {e}")),
+            Err(e) => {
+                let mut msg = format!("increment {k}: {e}");
+                if t0 > increment_start {
+                    // converged sub-steps of the failed increment: the last
+                    // is written as increment k at its own time
+                    let row = history_row(
+                        t0,
+                        total.outer_iterations,
+                        total.residual,
+                        &bodies,
+                        &contacts,
+                    );
+                    if let Some(h) = &mut history {
+                        h.append(&row).map_err(io_err)?;
+                    }
+                    if let Some(w) = &mut fields {
+                        w.write_history(&columns, &row).map_err(out_err)?;
+                        w.write(
+                            k,
+                            t0,
+                            total.outer_iterations,
+                            total.residual,
+                            true,
+                            &bodies,
+                            &contacts,
+                        )
+                        .map_err(out_err)?;
+                    }
+                    summary.outer_iterations += total.outer_iterations;
+                    summary.linear_iterations += total.linear_iterations;
+                    msg.push_str(&format!(
+                        "; its last converged sub-step, t = {t0:.6e}, is written as increment {k}"
+                    ));
+                }
+                failure = Some(msg);
+            }
         }
     }
     if let Some(pb) = &bar {

@@ -1008,3 +1008,150 @@ fn a_part_of_a_body_held_by_nothing_is_refused() {
         "{err}"
     );
 }
+
+/// A neo-Hookean tube (r 1–2, E = 1) inflated past its limit pressure
+/// (about 0.19) in one increment.
+const TUBE_PAST_ITS_LIMIT: &str = r#"title = "tube"
+[analysis]
+strain = "large"
+[time]
+end = 1.0
+steps = 1
+[solver]
+tolerance = 1e-8
+[[body]]
+name = "tube"
+mesh = { generator = "annulus", r_inner = 1.0, r_outer = 2.0, theta0 = 0, theta1 = 90, z1 = 0.1, cells = [20, 30, 1] }
+material = { model = "neo-hookean", E = 1.0, nu = 0.3 }
+[body.boundary.inner]
+type = "pressure"
+value = { table = [[0.0, 0.0], [1.0, 0.2]] }
+[body.boundary.start]
+type = "symmetry"
+[body.boundary.end]
+type = "symmetry"
+[body.boundary.zmin]
+type = "empty"
+[body.boundary.zmax]
+type = "empty"
+"#;
+
+/// The increment fails after sub-steps of its cut-backs converged (the
+/// tube inflates up to t ≈ 0.94, then no equilibrium exists): the last
+/// converged sub-step is written as increment 1 at its own time, with its
+/// fields and its history row, and the summary reports it, not the
+/// diverged iterate. Before, the results held no increment at all
+/// (check-results: "no /time/<k> groups").
+#[test]
+fn a_failed_increment_keeps_its_last_converged_sub_step() {
+    let dir = tempfile::tempdir().unwrap();
+    let (code, outdir, err) = run_quietly(dir.path(), TUBE_PAST_ITS_LIMIT.as_bytes());
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("is written as increment 1"), "{err}");
+    let res = outdir.join("tube");
+    let hist = std::fs::read_to_string(res.join("history.csv")).unwrap();
+    let rows: Vec<&str> = hist.lines().skip(1).collect();
+    assert_eq!(rows.len(), 1, "{hist}");
+    let t: f64 = rows[0].split(',').next().unwrap().parse().unwrap();
+    assert!(t > 0.5 && t < 1.0, "time {t}");
+    let file = hdf5::File::open(res.join("tube.h5")).unwrap();
+    let g = file.group("time/1").unwrap();
+    let time: f64 = g.attr("time").unwrap().read_scalar().unwrap();
+    let converged: u8 = g.attr("converged").unwrap().read_scalar().unwrap();
+    assert_eq!((time, converged), (t, 1));
+    let u = file
+        .dataset("time/1/tube/displacement")
+        .unwrap()
+        .read_2d::<f64>()
+        .unwrap();
+    assert!(u.iter().all(|x| x.is_finite()));
+    let (_, v) = read_summary(&res);
+    assert_eq!(v["converged"], false);
+    assert!(v["outer_iterations"].as_u64().unwrap() > 0);
+}
+
+/// Nothing prescribed changes over the step (the pressure is a constant,
+/// applied in full from the first increment): an increment that does not
+/// converge is not redone in smaller steps, which would be the same
+/// problem, and the message says how to ramp the load.
+#[test]
+fn a_constant_load_is_not_cut_back() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = TUBE_PAST_ITS_LIMIT
+        .replace("{ table = [[0.0, 0.0], [1.0, 0.2]] }", "0.1")
+        .replace("tolerance = 1e-8", "tolerance = 1e-8\nmax_outer = 5");
+    let (code, _, err) = run_quietly(dir.path(), case.as_bytes());
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("not redone in smaller steps"), "{err}");
+    assert!(err.contains("as a table"), "{err}");
+    assert!(!err.contains("redone in steps of"), "{err}");
+}
+
+/// Two blocks (10 × 10 cells of 0.1) whose contact surfaces start
+/// overlapping by `overlap`.
+fn overlapping_blocks(overlap: f64) -> String {
+    format!(
+        r#"title = "overlap"
+[time]
+end = 1.0
+steps = 1
+[[body]]
+name = "lower"
+mesh = {{ generator = "box", min = [0, 0, 0], max = [1, 1, 0.1], cells = [10, 10, 1] }}
+material = {{ model = "linear-elastic", E = 1000.0, nu = 0.3 }}
+[body.boundary.ymin]
+type = "symmetry"
+[body.boundary.xmin]
+type = "symmetry"
+[body.boundary.zmin]
+type = "empty"
+[body.boundary.zmax]
+type = "empty"
+[[body]]
+name = "upper"
+mesh = {{ generator = "box", min = [0, {y0}, 0], max = [1, {y1}, 0.1], cells = [10, 10, 1] }}
+material = {{ model = "linear-elastic", E = 1000.0, nu = 0.3 }}
+[body.boundary.ymax]
+type = "normal-displacement"
+value = 0.0
+[body.boundary.xmin]
+type = "symmetry"
+[body.boundary.zmin]
+type = "empty"
+[body.boundary.zmax]
+type = "empty"
+[[contact]]
+master = "lower/ymax"
+slave = "upper/ymin"
+coupling = "implicit"
+"#,
+        y0 = 1.0 - overlap,
+        y1 = 2.0 - overlap
+    )
+}
+
+/// Surfaces that start overlapping by 2.5 cell heights: the contact search
+/// (one cell height into each body) finds no pairs there, and the run
+/// converged in one iteration with no contact force. Refused now, naming
+/// the contact; an overlap of 1.5 cell heights still runs, with the force
+/// of the pressed stack (E′ ε A = 1098.9 · 0.075 · 0.1 = 8.24, less the
+/// penalty's give).
+#[test]
+fn surfaces_overlapping_beyond_the_search_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    expect_input_error(
+        dir.path(),
+        overlapping_blocks(0.25).as_bytes(),
+        &[
+            "contact[0].slave",
+            "start overlapping deeper than the contact search reaches",
+            "'upper/ymin'",
+            "body 'lower'",
+        ],
+    );
+    let (code, outdir, err) = run_quietly(dir.path(), overlapping_blocks(0.15).as_bytes());
+    assert_eq!(code, 0, "{err}");
+    let (_, v) = read_summary(&outdir.join("overlap"));
+    let force = v["contacts"][0]["normal_force"].as_f64().unwrap();
+    assert!(force > 7.0 && force < 8.3, "normal force {force}");
+}

@@ -1,0 +1,203 @@
+//! A check before the first increment: contact surfaces that start
+//! overlapping deeper than the contact search reaches.
+//!
+//! The search extrudes every face's box one mean cell height into its body
+//! (thesis eq. 4.10, e⁻ = h̄), so a surface that starts inside the other
+//! body by more than about one cell layer below that body's contact patch
+//! finds no partner there: its faces get no gap and no pressure, and the
+//! run went on as if the bodies did not touch (two blocks overlapping by
+//! 2.5 cell heights: converged in one outer iteration with no contact
+//! force). Such a start is refused, naming the contact, the face and the
+//! depth in cell layers.
+//!
+//! A face centre of one side counts as inside the other body when it lies
+//! in one of its cells (all face planes; convex cells), found through a
+//! bounding-volume hierarchy over the cells' boxes (parry3d-f64); it counts
+//! as out of reach when that cell is neither an owner of the contact patch
+//! nor a face neighbour of one.
+use fv_mesh::{PolyMesh, Vector};
+use parry3d_f64::bounding_volume::{Aabb, BoundingVolume};
+use parry3d_f64::math::Vector as PVector;
+use parry3d_f64::partitioning::{Bvh, BvhBuildStrategy};
+
+use crate::case::{Case, InputError};
+use crate::contact_coupling::{ContactSet, ContactSide};
+use crate::model::Body;
+
+/// Cell layers below a contact patch (0: the patch's owner cells) that the
+/// search reaches.
+const REACHED_LAYERS: u8 = 1;
+
+/// Refuses contact pairs whose surfaces start overlapping deeper than the
+/// search reaches (module documentation).
+pub fn check_initial_overlap(
+    case: &Case,
+    bodies: &[Body],
+    contacts: &ContactSet,
+) -> Result<(), InputError> {
+    for (i, ci) in contacts.interfaces.iter().enumerate() {
+        for (inside, other, key) in [
+            (&ci.slave, &ci.master, "slave"),
+            (&ci.master, &ci.slave, "master"),
+        ] {
+            if let Some((f, x, layer)) = deepest_face_inside(inside, other, bodies) {
+                let b = &bodies[other.body];
+                return Err(case.source.error(
+                    &format!("contact[{i}].{key}"),
+                    format!(
+                        "the contact surfaces start overlapping deeper than the contact search reaches: face {f} of '{}/{}' (centre {:.4e}, {:.4e}, {:.4e}) lies inside body '{}', in the cell layer {layer} below its patch '{}' (the search reaches about one cell layer into each body); move the bodies apart so that they overlap by less than a cell height, or start them apart and press them together",
+                        bodies[inside.body].name,
+                        bodies[inside.body].mesh.patches[inside.patch].name,
+                        x.x,
+                        x.y,
+                        x.z,
+                        b.name,
+                        b.mesh.patches[other.patch].name,
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The face of `side` whose centre lies deepest inside the body of
+/// `other` beyond [`REACHED_LAYERS`]: face index, centre and cell layer.
+fn deepest_face_inside(
+    side: &ContactSide,
+    other: &ContactSide,
+    bodies: &[Body],
+) -> Option<(usize, Vector, u8)> {
+    let b = &bodies[other.body];
+    let mesh = &b.mesh;
+    let layers = cell_layers(mesh, other.patch);
+    let centres = &side.surface.face_centres;
+    if centres.is_empty() {
+        return None;
+    }
+    // the cells whose box meets the box of the face centres
+    let (mut lo, mut hi) = (
+        Vector::repeat(f64::INFINITY),
+        Vector::repeat(f64::NEG_INFINITY),
+    );
+    for x in centres {
+        lo = lo.inf(x);
+        hi = hi.sup(x);
+    }
+    let reach = Aabb::new(
+        PVector::new(lo.x, lo.y, lo.z),
+        PVector::new(hi.x, hi.y, hi.z),
+    );
+    let (cp_off, cp) = mesh.cell_points();
+    let mut near = Vec::new();
+    let mut cell_boxes = Vec::new();
+    for c in 0..mesh.n_cells {
+        let (mut lo, mut hi) = (
+            Vector::repeat(f64::INFINITY),
+            Vector::repeat(f64::NEG_INFINITY),
+        );
+        for &p in &cp[cp_off[c] as usize..cp_off[c + 1] as usize] {
+            let x = mesh.points[p as usize];
+            lo = lo.inf(&x);
+            hi = hi.sup(&x);
+        }
+        let cell = Aabb::new(
+            PVector::new(lo.x, lo.y, lo.z),
+            PVector::new(hi.x, hi.y, hi.z),
+        );
+        if cell.intersects(&reach) {
+            near.push(c);
+            cell_boxes.push(cell);
+        }
+    }
+    if near.is_empty() {
+        return None;
+    }
+    let point_boxes: Vec<Aabb> = centres
+        .iter()
+        .map(|x| {
+            let p = PVector::new(x.x, x.y, x.z);
+            Aabb::new(p, p)
+        })
+        .collect();
+    let cells = Bvh::from_leaves(BvhBuildStrategy::Binned, &cell_boxes);
+    let points = Bvh::from_leaves(BvhBuildStrategy::Binned, &point_boxes);
+    let (cf_off, cf) = mesh.cell_faces();
+    // the shallowest layer of the cells each centre lies in (a centre on
+    // the common face of two cells is as deep as the shallower)
+    let mut shallowest = vec![u8::MAX; centres.len()];
+    let mut inside = vec![false; centres.len()];
+    for (a, f) in cells.leaf_pairs(&points, |x, y| x.intersects(y)) {
+        let c = near[a as usize];
+        let f = f as usize;
+        let faces = &cf[cf_off[c] as usize..cf_off[c + 1] as usize];
+        if inside_cell(mesh, &b.geom, c, faces, &centres[f]) {
+            inside[f] = true;
+            shallowest[f] = shallowest[f].min(layers[c]);
+        }
+    }
+    (0..centres.len())
+        .filter(|&f| inside[f] && shallowest[f] > REACHED_LAYERS)
+        .max_by_key(|&f| shallowest[f])
+        .map(|f| (f, centres[f], shallowest[f]))
+}
+
+/// Cell layer of every cell below patch `patch` (0: its owner cells, then
+/// face neighbours), capped at 255.
+fn cell_layers(mesh: &PolyMesh, patch: usize) -> Vec<u8> {
+    let mut layer = vec![u8::MAX; mesh.n_cells];
+    let mut front: Vec<usize> = Vec::new();
+    for f in mesh.patches[patch].faces() {
+        let o = mesh.owner[f] as usize;
+        if layer[o] != 0 {
+            layer[o] = 0;
+            front.push(o);
+        }
+    }
+    let (cf_off, cf) = mesh.cell_faces();
+    let ni = mesh.n_internal_faces();
+    let mut next = Vec::new();
+    let mut depth = 0u8;
+    while !front.is_empty() && depth < REACHED_LAYERS + 1 {
+        depth += 1;
+        next.clear();
+        for &c in &front {
+            for &f in &cf[cf_off[c] as usize..cf_off[c + 1] as usize] {
+                let f = f as usize;
+                if f >= ni {
+                    continue;
+                }
+                let (o, n) = (mesh.owner[f] as usize, mesh.neighbour[f] as usize);
+                let d = if o == c { n } else { o };
+                if layer[d] == u8::MAX {
+                    layer[d] = depth;
+                    next.push(d);
+                }
+            }
+        }
+        std::mem::swap(&mut front, &mut next);
+    }
+    layer
+}
+
+/// Whether `x` lies inside cell `c` or on its boundary (behind or on
+/// every face plane, oriented out of the cell): a face centre on the
+/// common face of two cells counts in both.
+fn inside_cell(
+    mesh: &PolyMesh,
+    geom: &fv_mesh::MeshGeometry,
+    c: usize,
+    faces: &[u32],
+    x: &Vector,
+) -> bool {
+    let size = geom.cell_volumes[c].cbrt();
+    faces.iter().all(|&f| {
+        let f = f as usize;
+        let out = if mesh.owner[f] as usize == c {
+            geom.face_normals[f]
+        } else {
+            -geom.face_normals[f]
+        };
+        (x - geom.face_centres[f]).dot(&out) <= 1e-9 * size
+    })
+}

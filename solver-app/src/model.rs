@@ -396,7 +396,7 @@ impl Body {
                 .map_err(|e| format!("body '{}': the moved mesh is invalid: {e}", self.name))?;
             if let Some(bad) = self.geom.cell_volumes.iter().position(|v| !(*v > 0.0)) {
                 return Err(format!(
-                    "body '{}': cell {bad} is inverted after the mesh motion (the increment is too large; use more steps)",
+                    "body '{}': cell {bad} is inverted after the mesh motion (the increment is too large; use more steps, and give a prescribed value as a table to ramp it: a constant one is applied in full from the first increment)",
                     self.name
                 ));
             }

@@ -1398,7 +1398,7 @@ fn update_body_fields(b: &mut Body, params: &MomentumParams) -> BodyUpdate {
     let t2 = Instant::now();
     if let Some((cell, jacobian)) = bad {
         out.inverted = Some(format!(
-            "body '{}': cell {cell}: relative Jacobian det f = {jacobian:.3e} is not positive (the increment inverts the cell; use more steps)",
+            "body '{}': cell {cell}: relative Jacobian det f = {jacobian:.3e} is not positive (the increment inverts the cell; use more steps, and give a prescribed value as a table to ramp it: a constant one is applied in full from the first increment)",
             b.name
         ));
     }

@@ -245,6 +245,9 @@ fn run_case_noting(
         log.warn(note);
         summary.coupling_switched.push(note.to_owned());
     }
+    for w in short_tables(case) {
+        log.warn(&w);
+    }
 
     let tty = std::io::stderr().is_terminal() && !opts.quiet && !opts.no_files;
     let bar = if tty {
@@ -662,6 +665,68 @@ fn run_case_noting(
         summary,
         directory: dir,
     })
+}
+
+/// Time tables of the boundary conditions that end before `[time] end`
+/// (their last value is held from there) or start after 0 (their first
+/// value is held until then): allowed, but usually a slip in the case
+/// (a ramp meant to reach the end), so the log says so.
+fn short_tables(case: &Case) -> Vec<String> {
+    use crate::case::{BoundarySpec, ScalarValue, VectorValue};
+    let end = case.time.end;
+    let range = |key: String, first: f64, last: f64, out: &mut Vec<String>| {
+        if last < end * (1.0 - 1e-9) {
+            out.push(format!(
+                "{key}: the table ends at t = {last:.6e}, before [time] end = {end:.6e}; its last value is held from there"
+            ));
+        }
+        if first > 1e-12 * end.abs() {
+            out.push(format!(
+                "{key}: the table starts at t = {first:.6e}; its first value is held before"
+            ));
+        }
+    };
+    let vector = |key: String, v: &VectorValue, out: &mut Vec<String>| {
+        if let VectorValue::Table(rows) = v {
+            if let (Some(a), Some(b)) = (rows.first(), rows.last()) {
+                range(key, a.0, b.0, out);
+            }
+        }
+    };
+    let scalar = |key: String, v: &ScalarValue, out: &mut Vec<String>| {
+        if let ScalarValue::Table(rows) = v {
+            if let (Some(a), Some(b)) = (rows.first(), rows.last()) {
+                range(key, a.0, b.0, out);
+            }
+        }
+    };
+    let mut out = Vec::new();
+    for (i, b) in case.bodies.iter().enumerate() {
+        for (patch, spec) in &b.boundary {
+            let key = format!("body[{i}].boundary.{patch}");
+            match spec {
+                BoundarySpec::Displacement { value }
+                | BoundarySpec::Traction { value }
+                | BoundarySpec::Force { value } => vector(format!("{key}.value"), value, &mut out),
+                BoundarySpec::NormalDisplacement { value } | BoundarySpec::Pressure { value } => {
+                    scalar(format!("{key}.value"), value, &mut out)
+                }
+                BoundarySpec::RigidMotion {
+                    translation,
+                    rotation,
+                } => {
+                    if let Some(t) = translation {
+                        vector(format!("{key}.translation"), t, &mut out);
+                    }
+                    if let Some(r) = rotation {
+                        scalar(format!("{key}.rotation.angle"), &r.angle, &mut out);
+                    }
+                }
+                _ => {}
+            }
+        }
+    }
+    out
 }
 
 /// The explicitly coupled contacts a body is in.

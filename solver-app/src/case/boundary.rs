@@ -144,9 +144,19 @@ pub(crate) fn boundary_condition(node: &Node<'_>) -> Res<BoundarySpec> {
                 ));
             }
             t.deny_unknown(&["type", "translation", "rotation"])?;
+            let translation = t.maybe("translation", vector_value)?;
+            let rotation = t.maybe("rotation", rotation)?;
+            if translation.is_none() && rotation.is_none() {
+                // most likely a misspelt or forgotten key: the patch would
+                // silently be held fixed
+                return Err(t.err_at_key(
+                    "translation",
+                    "type \"rigid-motion\" needs `translation` and/or `rotation` (to hold the patch fixed, write type = \"displacement\" with value = [0, 0, 0])",
+                ));
+            }
             Ok(BoundarySpec::RigidMotion {
-                translation: t.maybe("translation", vector_value)?,
-                rotation: t.maybe("rotation", rotation)?,
+                translation,
+                rotation,
             })
         }
     }

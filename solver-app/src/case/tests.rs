@@ -597,6 +597,7 @@ type = "rigid-motion"
 rotation = { axis = [1, 1, 0], origin = [1, 2, 3], angle = 0.5 }
 [body.boundary.i]
 type = "rigid-motion"
+translation = [1, 0, 0]
 [body.boundary.j]
 type = "pressure"
 value = 100e6"#,
@@ -671,7 +672,7 @@ value = 100e6"#,
     assert_eq!(
         bc(10),
         BoundarySpec::RigidMotion {
-            translation: None,
+            translation: Some(VectorValue::Constant([1.0, 0.0, 0.0])),
             rotation: None
         }
     );
@@ -805,6 +806,13 @@ fn boundary_errors() {
     );
     let e = bc("type = \"rigid-motion\"\nvalue = [0, 0, 0]");
     assert!(e.message.contains("translation"), "{e}");
+    // neither: a forgotten or misspelt key, not a fixed patch
+    let e = bc("type = \"rigid-motion\"");
+    assert_eq!(e.key.as_deref(), Some("body[0].boundary.top.translation"));
+    assert!(
+        e.message.contains("needs `translation` and/or `rotation`"),
+        "{e}"
+    );
     let e = fail(&with_body("boundary = { top = 1 }"));
     assert_eq!(e.key.as_deref(), Some("body[0].boundary.top"));
     let e = fail(&with_body("boundary = 1"));

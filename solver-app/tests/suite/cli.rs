@@ -1155,3 +1155,21 @@ fn surfaces_overlapping_beyond_the_search_are_refused() {
     let force = v["contacts"][0]["normal_force"].as_f64().unwrap();
     assert!(force > 7.0 && force < 8.3, "normal force {force}");
 }
+
+/// A time table that ends before `[time] end` holds its last value, as
+/// the contract says; the log says so (usually a ramp meant to reach the
+/// end), naming the key.
+#[test]
+fn a_table_ending_early_is_noted_in_the_log() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = GOOD.replace("[1.0, [0, -0.01, 0]]", "[0.5, [0, -0.01, 0]]");
+    let (code, _, err) = run_quietly(dir.path(), case.as_bytes());
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("body[0].boundary.ymax.value: the table ends at t = 5.000000e-1"),
+        "{err}"
+    );
+    let (code, _, err) = run_quietly(dir.path(), GOOD.as_bytes());
+    assert_eq!(code, 0, "{err}");
+    assert!(!err.contains("the table ends"), "{err}");
+}

@@ -36,6 +36,11 @@ pub fn check_initial_overlap(
     contacts: &ContactSet,
 ) -> Result<(), InputError> {
     for (i, ci) in contacts.interfaces.iter().enumerate() {
+        // a body's own surface lies on its own cells: self-contact cannot
+        // start overlapping
+        if ci.master.body == ci.slave.body {
+            continue;
+        }
         for (inside, other, key) in [
             (&ci.slave, &ci.master, "slave"),
             (&ci.master, &ci.slave, "master"),
@@ -180,9 +185,11 @@ fn cell_layers(mesh: &PolyMesh, patch: usize) -> Vec<u8> {
     layer
 }
 
-/// Whether `x` lies inside cell `c` or on its boundary (behind or on
-/// every face plane, oriented out of the cell): a face centre on the
-/// common face of two cells counts in both.
+/// Whether `x` lies inside cell `c` or on one of its internal faces
+/// (behind or on every face plane, oriented out of the cell; a centre on
+/// the common face of two cells counts in both), but not on the body's
+/// boundary: a surface that only touches the body there (a punch wider
+/// than the patch it presses on) does not overlap it.
 fn inside_cell(
     mesh: &PolyMesh,
     geom: &fv_mesh::MeshGeometry,
@@ -190,7 +197,8 @@ fn inside_cell(
     faces: &[u32],
     x: &Vector,
 ) -> bool {
-    let size = geom.cell_volumes[c].cbrt();
+    let tol = 1e-9 * geom.cell_volumes[c].cbrt();
+    let ni = mesh.n_internal_faces();
     faces.iter().all(|&f| {
         let f = f as usize;
         let out = if mesh.owner[f] as usize == c {
@@ -198,6 +206,11 @@ fn inside_cell(
         } else {
             -geom.face_normals[f]
         };
-        (x - geom.face_centres[f]).dot(&out) <= 1e-9 * size
+        let d = (x - geom.face_centres[f]).dot(&out);
+        if f >= ni {
+            d < -tol
+        } else {
+            d <= tol
+        }
     })
 }

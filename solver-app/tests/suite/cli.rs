@@ -1156,6 +1156,38 @@ fn surfaces_overlapping_beyond_the_search_are_refused() {
     assert!(force > 7.0 && force < 8.3, "normal force {force}");
 }
 
+/// Self-contact: a body's own contact surface lies on its own cells, which
+/// is no overlap (the check compares different bodies only).
+#[test]
+fn self_contact_is_not_an_initial_overlap() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = r#"title = "self"
+[time]
+end = 1.0
+steps = 1
+[[body]]
+name = "b"
+mesh = { generator = "box", min = [0, 0, 0], max = [1, 1, 0.1], cells = [10, 10, 1] }
+material = { model = "linear-elastic", E = 1000.0, nu = 0.3 }
+[body.boundary.ymin]
+type = "displacement"
+value = [0, 0, 0]
+[body.boundary.ymax]
+type = "displacement"
+value = [0, -0.01, 0]
+[body.boundary.zmin]
+type = "empty"
+[body.boundary.zmax]
+type = "empty"
+[[contact]]
+master = "b/xmin"
+slave = "b/xmax"
+"#;
+    let p = write(dir.path(), "self.toml", case.as_bytes());
+    let (code, _, err) = fvc(&["check", p.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+}
+
 /// A time table that ends before `[time] end` holds its last value, as
 /// the contract says; the log says so (usually a ramp meant to reach the
 /// end), naming the key.

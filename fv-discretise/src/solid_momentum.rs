@@ -430,10 +430,17 @@ impl SolidMomentum {
     /// measured, else the face gradient's (Nanson).
     #[inline]
     fn loaded_area(&self, b: usize, grad_b: &Tensor, n: &Vector) -> Vector {
-        match self.moved_area.get(b) {
-            Some(a) if *a != Vector::zeros() => *a,
-            _ => current_area_vector(self.law.is_updated_lagrangian(), grad_b, n),
-        }
+        self.measured_moved_area(b)
+            .unwrap_or_else(|| current_area_vector(self.law.is_updated_lagrangian(), grad_b, n))
+    }
+
+    /// [`Self::moved_area`] of boundary face `b`, if measured.
+    #[inline]
+    fn measured_moved_area(&self, b: usize) -> Option<Vector> {
+        self.moved_area
+            .get(b)
+            .copied()
+            .filter(|a| *a != Vector::zeros())
     }
 
     /// Forgets the measured [`Self::moved_area`] (they belong to the
@@ -475,11 +482,7 @@ impl SolidMomentum {
                 let n = geom.face_normals[f];
                 let area_ratio = match &self.conditions[pi] {
                     PatchCondition::LinearisedContact(lc) => lc.moved_area_ratio(f - p.start),
-                    _ => self
-                        .moved_area
-                        .get(f - ni)
-                        .filter(|a| **a != Vector::zeros())
-                        .map(|a| a.norm()),
+                    _ => self.measured_moved_area(f - ni).map(|a| a.norm()),
                 };
                 let v = value(self, f - ni, mesh.owner[f] as usize, &n, area_ratio);
                 self.traction_offset[f - ni] = v;

@@ -826,6 +826,13 @@ impl ContactInterface {
 }
 
 impl ContactSet {
+    /// Whether body `bi` is a side of any contact pair.
+    pub fn involves(&self, bi: usize) -> bool {
+        self.interfaces
+            .iter()
+            .any(|c| c.master.body == bi || c.slave.body == bi)
+    }
+
     /// Builds the contact pairs of a case (after the bodies).
     pub fn new(case: &Case, bodies: &[Body]) -> Result<Self, InputError> {
         let src = &case.source;

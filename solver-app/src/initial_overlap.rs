@@ -75,41 +75,20 @@ fn deepest_face_inside(
 ) -> Option<(usize, Vector, u8)> {
     let b = &bodies[other.body];
     let mesh = &b.mesh;
-    let layers = cell_layers(mesh, other.patch);
+    let (cf_off, cf) = mesh.cell_faces();
+    let layers = cell_layers(mesh, other.patch, &cf_off, &cf);
     let centres = &side.surface.face_centres;
     if centres.is_empty() {
         return None;
     }
     // the cells whose box meets the box of the face centres
-    let (mut lo, mut hi) = (
-        Vector::repeat(f64::INFINITY),
-        Vector::repeat(f64::NEG_INFINITY),
-    );
-    for x in centres {
-        lo = lo.inf(x);
-        hi = hi.sup(x);
-    }
-    let reach = Aabb::new(
-        PVector::new(lo.x, lo.y, lo.z),
-        PVector::new(hi.x, hi.y, hi.z),
-    );
+    let reach = bounding_box(centres.iter().copied());
     let (cp_off, cp) = mesh.cell_points();
     let mut near = Vec::new();
     let mut cell_boxes = Vec::new();
     for c in 0..mesh.n_cells {
-        let (mut lo, mut hi) = (
-            Vector::repeat(f64::INFINITY),
-            Vector::repeat(f64::NEG_INFINITY),
-        );
-        for &p in &cp[cp_off[c] as usize..cp_off[c + 1] as usize] {
-            let x = mesh.points[p as usize];
-            lo = lo.inf(&x);
-            hi = hi.sup(&x);
-        }
-        let cell = Aabb::new(
-            PVector::new(lo.x, lo.y, lo.z),
-            PVector::new(hi.x, hi.y, hi.z),
-        );
+        let pts = &cp[cp_off[c] as usize..cp_off[c + 1] as usize];
+        let cell = bounding_box(pts.iter().map(|&p| mesh.points[p as usize]));
         if cell.intersects(&reach) {
             near.push(c);
             cell_boxes.push(cell);
@@ -120,14 +99,10 @@ fn deepest_face_inside(
     }
     let point_boxes: Vec<Aabb> = centres
         .iter()
-        .map(|x| {
-            let p = PVector::new(x.x, x.y, x.z);
-            Aabb::new(p, p)
-        })
+        .map(|&x| bounding_box(std::iter::once(x)))
         .collect();
     let cells = Bvh::from_leaves(BvhBuildStrategy::Binned, &cell_boxes);
     let points = Bvh::from_leaves(BvhBuildStrategy::Binned, &point_boxes);
-    let (cf_off, cf) = mesh.cell_faces();
     // the shallowest layer of the cells each centre lies in (a centre on
     // the common face of two cells is as deep as the shallower)
     let mut shallowest = vec![u8::MAX; centres.len()];
@@ -147,9 +122,26 @@ fn deepest_face_inside(
         .map(|f| (f, centres[f], shallowest[f]))
 }
 
+/// Axis-aligned box of `points` (parry's type, for its BVH).
+fn bounding_box(points: impl Iterator<Item = Vector>) -> Aabb {
+    let (mut lo, mut hi) = (
+        Vector::repeat(f64::INFINITY),
+        Vector::repeat(f64::NEG_INFINITY),
+    );
+    for x in points {
+        lo = lo.inf(&x);
+        hi = hi.sup(&x);
+    }
+    Aabb::new(
+        PVector::new(lo.x, lo.y, lo.z),
+        PVector::new(hi.x, hi.y, hi.z),
+    )
+}
+
 /// Cell layer of every cell below patch `patch` (0: its owner cells, then
-/// face neighbours), capped at 255.
-fn cell_layers(mesh: &PolyMesh, patch: usize) -> Vec<u8> {
+/// face neighbours, up to [`REACHED_LAYERS`] + 1; 255 beyond), with the
+/// cells' faces `cf_off`, `cf` (`PolyMesh::cell_faces`).
+fn cell_layers(mesh: &PolyMesh, patch: usize, cf_off: &[u32], cf: &[u32]) -> Vec<u8> {
     let mut layer = vec![u8::MAX; mesh.n_cells];
     let mut front: Vec<usize> = Vec::new();
     for f in mesh.patches[patch].faces() {
@@ -159,7 +151,6 @@ fn cell_layers(mesh: &PolyMesh, patch: usize) -> Vec<u8> {
             front.push(o);
         }
     }
-    let (cf_off, cf) = mesh.cell_faces();
     let ni = mesh.n_internal_faces();
     let mut next = Vec::new();
     let mut depth = 0u8;

@@ -254,10 +254,7 @@ impl Body {
         }
         let ni = self.mesh.n_internal_faces();
         for (spec, patch) in self.patch_specs.iter().zip(&self.mesh.patches) {
-            if !matches!(
-                spec,
-                Some(BoundarySpec::Traction { .. } | BoundarySpec::Pressure { .. })
-            ) {
+            if !is_loaded(spec) {
                 continue;
             }
             for f in patch.faces() {
@@ -572,6 +569,15 @@ fn prescribe_patch_points(
     }
 }
 
+/// A traction or pressure patch: its load acts on the moved faces
+/// ([`Body::update_boundary_values`]).
+fn is_loaded(spec: &Option<BoundarySpec>) -> bool {
+    matches!(
+        spec,
+        Some(BoundarySpec::Traction { .. } | BoundarySpec::Pressure { .. })
+    )
+}
+
 /// Translation, rotation tensor and rotation origin of a rigid motion at time `t`.
 fn rigid_motion_at(
     translation: Option<&crate::case::VectorValue>,
@@ -757,10 +763,7 @@ fn build_body(
     let mut loaded_points: Vec<u32> = Vec::new();
     if mesh_motion.is_some() {
         for (spec, patch) in patch_specs.iter().zip(&mesh.patches) {
-            if matches!(
-                spec,
-                Some(BoundarySpec::Traction { .. } | BoundarySpec::Pressure { .. })
-            ) {
+            if is_loaded(spec) {
                 for f in patch.faces() {
                     loaded_points.extend_from_slice(mesh.face(f));
                 }

@@ -505,25 +505,23 @@ fn run_case_noting(
                 for l in crate::results::full_revolution_lines(&bodies, &contacts) {
                     log.write(&l);
                 }
-                let row = history_row(t, info.outer_iterations, info.residual, &bodies, &contacts);
-                if let Some(h) = &mut history {
-                    h.append(&row).map_err(io_err)?;
-                }
-                if let Some(w) = &mut fields {
-                    w.write_history(&columns, &row).map_err(out_err)?;
-                    if k % case.output.every == 0 || k == case.time.steps || !info.converged {
-                        w.write(
-                            k,
-                            t,
-                            info.outer_iterations,
-                            info.residual,
-                            info.converged,
-                            &bodies,
-                            &contacts,
-                        )
-                        .map_err(out_err)?;
-                    }
-                }
+                record_increment(
+                    &mut history,
+                    &mut fields,
+                    &columns,
+                    &IncrementRecord {
+                        k,
+                        t,
+                        outer_iterations: info.outer_iterations,
+                        residual: info.residual,
+                        converged: info.converged,
+                        with_fields: k % case.output.every == 0
+                            || k == case.time.steps
+                            || !info.converged,
+                    },
+                    &bodies,
+                    &contacts,
+                )?;
                 let accepted =
                     info.converged || case.solver.on_nonconvergence == OnNonConvergence::Continue;
                 if accepted {
@@ -595,29 +593,21 @@ fn run_case_noting(
                 if t0 > increment_start {
                     // converged sub-steps of the failed increment: the last
                     // is written as increment k at its own time
-                    let row = history_row(
-                        t0,
-                        total.outer_iterations,
-                        total.residual,
+                    record_increment(
+                        &mut history,
+                        &mut fields,
+                        &columns,
+                        &IncrementRecord {
+                            k,
+                            t: t0,
+                            outer_iterations: total.outer_iterations,
+                            residual: total.residual,
+                            converged: true,
+                            with_fields: true,
+                        },
                         &bodies,
                         &contacts,
-                    );
-                    if let Some(h) = &mut history {
-                        h.append(&row).map_err(io_err)?;
-                    }
-                    if let Some(w) = &mut fields {
-                        w.write_history(&columns, &row).map_err(out_err)?;
-                        w.write(
-                            k,
-                            t0,
-                            total.outer_iterations,
-                            total.residual,
-                            true,
-                            &bodies,
-                            &contacts,
-                        )
-                        .map_err(out_err)?;
-                    }
+                    )?;
                     summary.outer_iterations += total.outer_iterations;
                     summary.linear_iterations += total.linear_iterations;
                     msg.push_str(&format!(
@@ -665,6 +655,51 @@ fn run_case_noting(
         summary,
         directory: dir,
     })
+}
+
+/// What [`record_increment`] writes for increment `k`.
+struct IncrementRecord {
+    k: usize,
+    t: f64,
+    outer_iterations: usize,
+    residual: f64,
+    converged: bool,
+    /// The fields too (`[output] every`), not only the history row.
+    with_fields: bool,
+}
+
+/// Appends increment `r.k`'s row to `history.csv` and to the HDF5
+/// history, and its fields when asked.
+fn record_increment(
+    history: &mut Option<History>,
+    fields: &mut Option<FieldOutput>,
+    columns: &[&str],
+    r: &IncrementRecord,
+    bodies: &[Body],
+    contacts: &ContactSet,
+) -> Result<(), RunError> {
+    let out_err = |e: crate::output::OutputError| RunError::Output(e.to_string());
+    let row = history_row(r.t, r.outer_iterations, r.residual, bodies, contacts);
+    if let Some(h) = history {
+        h.append(&row)
+            .map_err(|e| RunError::Output(e.to_string()))?;
+    }
+    if let Some(w) = fields {
+        w.write_history(columns, &row).map_err(out_err)?;
+        if r.with_fields {
+            w.write(
+                r.k,
+                r.t,
+                r.outer_iterations,
+                r.residual,
+                r.converged,
+                bodies,
+                contacts,
+            )
+            .map_err(out_err)?;
+        }
+    }
+    Ok(())
 }
 
 /// Time tables of the boundary conditions that end before `[time] end`

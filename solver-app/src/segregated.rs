@@ -752,13 +752,7 @@ impl SegregatedSolver {
     fn start_rigidly_moved_bodies(&mut self, bodies: &mut [Body], contacts: &ContactSet) {
         let (t0, t1) = self.step_times;
         for (bi, b) in bodies.iter_mut().enumerate() {
-            if b.rigid
-                || !b.momentum.law.is_updated_lagrangian()
-                || contacts
-                    .interfaces
-                    .iter()
-                    .any(|c| c.master.body == bi || c.slave.body == bi)
-            {
+            if b.rigid || !b.momentum.law.is_updated_lagrangian() || contacts.involves(bi) {
                 continue;
             }
             let Some((q, c)) = b.sole_rigid_motion_step(t0, t1) else {
@@ -789,13 +783,7 @@ impl SegregatedSolver {
     /// first increment.
     fn start_from_harmonic_extension(&mut self, bodies: &mut [Body], contacts: &ContactSet) {
         let free: Vec<bool> = (0..bodies.len())
-            .map(|bi| {
-                !bodies[bi].rigid
-                    && !contacts
-                        .interfaces
-                        .iter()
-                        .any(|c| c.master.body == bi || c.slave.body == bi)
-            })
+            .map(|bi| !bodies[bi].rigid && !contacts.involves(bi))
             .collect();
         if !free.iter().any(|&f| f) {
             return;

@@ -63,3 +63,44 @@ fn plane_stress_cantilever_tip_deflection_within_2_percent() {
     assert!((rel - rel_plain).abs() < 1e-4, "{rel} vs {rel_plain}");
     assert!(accelerated * 100 < plain, "{accelerated} vs {plain}");
 }
+
+/// Tip deflection (mean u_y of the end face) and outer iterations of the
+/// tetrahedral cantilever of `validation/cases/tet-cantilever` on `mesh`.
+fn tetrahedral_cantilever(mesh: &str) -> (f64, usize) {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/tet-cantilever");
+    let text = std::fs::read_to_string(dir.join("case.toml")).expect("tet-cantilever/case.toml");
+    let text = text.replace("\"beam.msh\"", &format!("\"{mesh}\""));
+    let out = run_toml(&text, &dir);
+    assert!(out.converged, "{mesh}: {:?}", out.failure);
+    let b = &out.bodies[0];
+    let tip = patch_mean(b, "xmax", |bf, _| b.momentum.u_b[bf]).y;
+    (tip, out.summary.outer_iterations)
+}
+
+/// Unstructured tetrahedra under a traction: the traction faces enter the
+/// cell gradient at the normal's foot (fv_discretise::BoundaryRow::
+/// NormalFoot). Fitted at the face centres, the extrapolated face value fed
+/// each boundary cell's gradient back into itself: the 3,566-tet beam took
+/// 3,299 outer iterations (now 277) and the 434-tet beam stalled at a
+/// residual of 3.8e-6 after 20,000 (now converges in 5,193). The
+/// deflection is the scheme's on coarse tetrahedra: +9.8 % of Timoshenko's
+/// (3,566 tets; +10.4 % before), +37 % (434 tets).
+#[test]
+fn tetrahedral_cantilever_converges() {
+    // P = 1 × 0.2 × 0.2, L = 2, square section 0.2
+    let reference = -timoshenko_cantilever_tip(0.04, 2.0, 0.2, 0.2, 200e3, 0.3);
+    let (tip, iterations) = tetrahedral_cantilever("beam.msh");
+    let rel = tip / reference - 1.0;
+    eprintln!(
+        "tetrahedral cantilever (3,566 tets): tip {tip:.4e}, Timoshenko {reference:.4e} ({:+.2} %), {iterations} outer iterations",
+        100.0 * rel
+    );
+    assert!(rel.abs() < 0.12, "{tip} vs {reference}");
+    assert!(iterations < 600, "{iterations}");
+    let (tip, iterations) = tetrahedral_cantilever("beam-coarse.msh");
+    eprintln!(
+        "tetrahedral cantilever (434 tets): tip {tip:.4e} ({:+.2} %), {iterations} outer iterations",
+        100.0 * (tip / reference - 1.0)
+    );
+    assert!(tip / reference > 1.0 && tip / reference < 1.45, "{tip}");
+}

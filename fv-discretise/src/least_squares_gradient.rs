@@ -11,40 +11,7 @@
 //! Faces of `empty` patches enter G but take φ_b = φ_P, which fixes the
 //! gradient in the empty (out-of-plane) direction to zero and keeps G
 //! invertible on one-cell-thick meshes.
-//!
-//! Faces whose value is itself extrapolated from the cell (traction-type
-//! conditions, eq. 3.23: φ_b = φ_P + k_b·∇φ_P + g d_n) may enter at the
-//! foot of the normal from the cell centre, r_P + d_n n, with the value
-//! φ_P + g d_n ([`BoundaryRow::NormalFoot`]): only the normal derivative g
-//! is information about the cell's gradient, the k_b·∇φ_P part being the
-//! previous iterate's own gradient. Fitted at the face centre, that part
-//! feeds the gradient back into itself through the nearest member of the
-//! molecule; on unstructured tetrahedra, whose k_b is as long as d_n, the
-//! outer iterations then damp it slowly or not at all (the caller chooses
-//! the rows: `SolidMomentum::rows`).
 use fv_mesh::{MeshGeometry, PolyMesh, Tensor, Vector};
-
-/// How the faces of one boundary patch enter the least-squares fit.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum BoundaryRow {
-    /// At the face centre with the face value (prescribed values, symmetry).
-    FaceCentre,
-    /// At the foot of the normal from the cell centre, r_P + d_n n, with the
-    /// value φ_P + g d_n (traction-type conditions; see the module docs).
-    NormalFoot,
-    /// Only regularises G; the value is the cell's own (empty patches).
-    Passive,
-}
-
-/// The row vector of boundary face `f` of the fit: d_b, or d_n n at the foot
-/// (d_n = d_b·n, at least 0.05 |d_b|, as the momentum balance's).
-#[inline]
-pub fn boundary_row_vector(row: BoundaryRow, d: &Vector, n: &Vector) -> Vector {
-    match row {
-        BoundaryRow::NormalFoot => n * d.dot(n).max(0.05 * d.norm()),
-        _ => *d,
-    }
-}
 
 /// Precomputed least-squares gradient operator of one mesh.
 #[derive(Debug, Clone, Default)]
@@ -56,31 +23,27 @@ pub struct LeastSquaresGradient {
 }
 
 impl LeastSquaresGradient {
-    /// Builds the operator; `rows[p]` says how the faces of patch `p` enter
-    /// the fit (missing entries: [`BoundaryRow::FaceCentre`]).
-    pub fn new(mesh: &PolyMesh, geom: &MeshGeometry, rows: &[BoundaryRow]) -> Self {
+    /// Builds the operator; `passive_patch[p]` marks patches (empty) whose
+    /// faces only regularise G.
+    pub fn new(mesh: &PolyMesh, geom: &MeshGeometry, passive_patch: &[bool]) -> Self {
         let mut op = LeastSquaresGradient::default();
-        op.update(mesh, geom, rows);
+        op.update(mesh, geom, passive_patch);
         op
     }
 
     /// Recomputes the coefficients for the current geometry.
-    pub fn update(&mut self, mesh: &PolyMesh, geom: &MeshGeometry, rows: &[BoundaryRow]) {
+    pub fn update(&mut self, mesh: &PolyMesh, geom: &MeshGeometry, passive_patch: &[bool]) {
         let nc = mesh.n_cells;
         let ni = mesh.n_internal_faces();
         let nf = mesh.n_faces();
-        let row_of = |pi: usize| rows.get(pi).copied().unwrap_or(BoundaryRow::FaceCentre);
         let mut g = vec![Tensor::zeros(); nc];
-        for f in 0..ni {
+        for f in 0..nf {
             let d = geom.delta[f];
-            let dd = d * d.transpose() * ls_weight(&d);
+            let w = ls_weight(&d);
+            let dd = d * d.transpose() * w;
             g[mesh.owner[f] as usize] += dd;
-            g[mesh.neighbour[f] as usize] += dd;
-        }
-        for (pi, p) in mesh.patches.iter().enumerate() {
-            for f in p.faces() {
-                let d = boundary_row_vector(row_of(pi), &geom.delta[f], &geom.face_normals[f]);
-                g[mesh.owner[f] as usize] += d * d.transpose() * ls_weight(&d);
+            if f < ni {
+                g[mesh.neighbour[f] as usize] += dd;
             }
         }
         let ginv: Vec<Tensor> = g.iter().map(pseudo_inverse_sym).collect();
@@ -93,22 +56,22 @@ impl LeastSquaresGradient {
             self.neighbour_coeff[f] = -(ginv[mesh.neighbour[f] as usize] * d * w);
         }
         for (pi, p) in mesh.patches.iter().enumerate() {
-            let row = row_of(pi);
+            let passive = passive_patch.get(pi).copied().unwrap_or(false);
             for f in p.faces() {
-                let d = boundary_row_vector(row, &geom.delta[f], &geom.face_normals[f]);
-                self.owner_coeff[f] = if row == BoundaryRow::Passive {
+                let d = geom.delta[f];
+                let w = ls_weight(&d);
+                self.owner_coeff[f] = if passive {
                     Vector::zeros()
                 } else {
-                    ginv[mesh.owner[f] as usize] * d * ls_weight(&d)
+                    ginv[mesh.owner[f] as usize] * d * w
                 };
             }
         }
     }
 
     /// Gradient of a vector field: `out[P] = Σ c ⊗ (φ_k − φ_P)`, with
-    /// `(∇φ)_ij = ∂φ_j/∂x_i`. `boundary` holds the boundary values (index
-    /// `face − n_internal_faces`): the face value, or for a
-    /// [`BoundaryRow::NormalFoot`] face the value at the foot, φ_P + g d_n.
+    /// `(∇φ)_ij = ∂φ_j/∂x_i`. `boundary` holds the boundary-face values
+    /// (index `face − n_internal_faces`).
     pub fn vector_gradient(
         &self,
         mesh: &PolyMesh,
@@ -198,7 +161,7 @@ mod tests {
     fn linear_field_exact_on_distorted_mesh() {
         let m = perturbed_box(6, 0.4, 7);
         let g = MeshGeometry::new(&m).unwrap();
-        let op = LeastSquaresGradient::new(&m, &g, &[]);
+        let op = LeastSquaresGradient::new(&m, &g, &vec![false; m.patches.len()]);
         let a = Tensor::new(1.0, 2.0, -0.5, 0.3, -1.0, 4.0, 0.0, 0.7, 2.5);
         let f = |x: &Vector| a.transpose() * x + Vector::new(1.0, -2.0, 0.5);
         let cell: Vec<Vector> = g.cell_centres.iter().map(f).collect();
@@ -221,18 +184,8 @@ mod tests {
         )
         .unwrap();
         let g = MeshGeometry::new(&m).unwrap();
-        let rows: Vec<BoundaryRow> = m
-            .patches
-            .iter()
-            .map(|p| {
-                if p.name.starts_with('z') {
-                    BoundaryRow::Passive
-                } else {
-                    BoundaryRow::FaceCentre
-                }
-            })
-            .collect();
-        let op = LeastSquaresGradient::new(&m, &g, &rows);
+        let passive: Vec<bool> = m.patches.iter().map(|p| p.name.starts_with('z')).collect();
+        let op = LeastSquaresGradient::new(&m, &g, &passive);
         let a = Tensor::new(1.0, 2.0, 0.0, 0.3, -1.0, 0.0, 0.0, 0.0, 0.0);
         let f = |x: &Vector| a.transpose() * x;
         let cell: Vec<Vector> = g.cell_centres.iter().map(f).collect();

@@ -17,7 +17,7 @@ pub mod linear_solver;
 pub mod pcg_ic0;
 
 pub use boundary_conditions::{wedge_rotations, LinearisedContact, PatchCondition};
-pub use least_squares_gradient::{BoundaryRow, LeastSquaresGradient};
+pub use least_squares_gradient::LeastSquaresGradient;
 pub use solid_momentum::{Inertia, MomentumParams, RhieChowHistory, SolidMomentum};
 pub use stress_law::{current_area_vector, StressLaw};
 

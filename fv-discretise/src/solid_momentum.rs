@@ -40,7 +40,7 @@
 //! With inertia (3.11) the cell balance gains −m_P ü_P (backward Euler, the
 //! mass m_P = ρ_P Ω_P conserved) and the matrix diagonal m_P/Δt².
 use crate::stress_law::current_area_vector;
-use crate::{BoundaryRow, LeastSquaresGradient, PatchCondition, StressLaw};
+use crate::{LeastSquaresGradient, PatchCondition, StressLaw};
 use fv_materials::{updated_lagrangian_stress, MaterialState};
 use fv_mesh::{MeshGeometry, PolyMesh, Tensor, Vector};
 
@@ -154,25 +154,6 @@ pub struct SolidMomentum {
     kb: Vec<Vector>,
     /// Least-squares gradient operator.
     pub gradient: LeastSquaresGradient,
-    /// How each patch's faces enter the least-squares gradient. A traction
-    /// or pressure patch (also the unlisted, traction-free ones) of a
-    /// small-strain body enters at the normal's foot
-    /// ([`BoundaryRow::NormalFoot`]): a cantilever of 3,566 unstructured
-    /// tetrahedra under a tip traction converges in 277 outer iterations
-    /// instead of 3,299, one of 434 in 5,193 where it stalled at a residual
-    /// of 3.8e-6, and the tip deflection moves from +10.4 to +9.8 % of
-    /// Timoshenko's (validation `tetrahedral_cantilever_converges`). Under
-    /// the updated Lagrangian form the face centres stay: there a 12³ block
-    /// compressed 30 % and sheared between a clamp and a rigid motion lost
-    /// 5 % of its force at the foot and stopped converging at the corners
-    /// where the free sides meet the clamp (not understood). Contact
-    /// patches also stay at the face centres ([`Self::fit_at_face_centres`]),
-    /// their validated tractions unchanged.
-    rows: Vec<BoundaryRow>,
-    /// The boundary values the gradient fits, per boundary face: the face
-    /// value, or φ_P + g d_n at the normal's foot of a traction-type face
-    /// ([`BoundaryRow::NormalFoot`]); refilled before every gradient.
-    gradient_boundary: Vec<Vector>,
     /// Condition of every patch.
     pub conditions: Vec<PatchCondition>,
     /// Constitutive law and formulation (small strain or updated Lagrangian).
@@ -308,7 +289,10 @@ impl SolidMomentum {
         let ni = mesh.n_internal_faces();
         let nb = nf - ni;
         let nc = mesh.n_cells;
-        let rows = least_squares_rows(&conditions, law.is_updated_lagrangian());
+        let passive: Vec<bool> = conditions
+            .iter()
+            .map(|c| matches!(c, PatchCondition::Empty))
+            .collect();
         let ul = law.is_updated_lagrangian();
         let ul_len = |n: usize| if ul { n } else { 0 };
         let face_state = match &law {
@@ -320,9 +304,7 @@ impl SolidMomentum {
             k: law.implicit_stiffness(),
             dn: vec![0.0; nf],
             kb: vec![Vector::zeros(); nb],
-            gradient: LeastSquaresGradient::new(mesh, geom, &rows),
-            rows,
-            gradient_boundary: vec![Vector::zeros(); nb],
+            gradient: LeastSquaresGradient::new(mesh, geom, &passive),
             conditions,
             law,
             inertia: None,
@@ -368,7 +350,12 @@ impl SolidMomentum {
                 self.kb[f - ni] = d - n * d.dot(&n);
             }
         }
-        self.gradient.update(mesh, geom, &self.rows);
+        let passive: Vec<bool> = self
+            .conditions
+            .iter()
+            .map(|c| matches!(c, PatchCondition::Empty))
+            .collect();
+        self.gradient.update(mesh, geom, &passive);
     }
 
     /// The displacement the mesh operators act on, cells and boundary
@@ -913,26 +900,17 @@ impl SolidMomentum {
     /// caller rejects a converged state that still has one).
     pub fn update_gradient_and_stress(&mut self, mesh: &PolyMesh) -> Option<(usize, f64)> {
         let mut inverted = None;
-        self.fill_gradient_boundary(mesh);
         match &mut self.law {
             StressLaw::Small(m) => {
-                self.gradient.vector_gradient(
-                    mesh,
-                    &self.u,
-                    &self.gradient_boundary,
-                    &mut self.grad_u,
-                );
+                self.gradient
+                    .vector_gradient(mesh, &self.u, &self.u_b, &mut self.grad_u);
                 for (s, g) in self.sigma.iter_mut().zip(&self.grad_u) {
                     *s = m.stress(g);
                 }
             }
             StressLaw::UpdatedLagrangian { law, state } => {
-                self.gradient.vector_gradient(
-                    mesh,
-                    &self.du,
-                    &self.gradient_boundary,
-                    &mut self.grad_u,
-                );
+                self.gradient
+                    .vector_gradient(mesh, &self.du, &self.du_b, &mut self.grad_u);
                 for (i, ((g, sig), h)) in self
                     .grad_u
                     .iter()
@@ -957,39 +935,6 @@ impl SolidMomentum {
             }
         }
         inverted
-    }
-
-    /// Patch `p` enters the least-squares gradient at its face centres
-    /// (the solver's contact patches: see [`Self::rows`]).
-    pub fn fit_at_face_centres(&mut self, mesh: &PolyMesh, geom: &MeshGeometry, p: usize) {
-        if let Some(r) = self.rows.get_mut(p) {
-            if *r == BoundaryRow::NormalFoot {
-                *r = BoundaryRow::FaceCentre;
-                self.gradient.update(mesh, geom, &self.rows);
-            }
-        }
-    }
-
-    /// The values the least-squares gradient fits at the boundary faces
-    /// (of the increment under the updated Lagrangian form): the face value,
-    /// or at a traction-type face u_P + g d_n, the value at the foot of the
-    /// normal from the cell centre (see [`BoundaryRow::NormalFoot`]).
-    fn fill_gradient_boundary(&mut self, mesh: &PolyMesh) {
-        let ni = mesh.n_internal_faces();
-        let mut out = std::mem::take(&mut self.gradient_boundary);
-        let (u, u_b) = self.increment();
-        for (p, row) in mesh.patches.iter().zip(&self.rows) {
-            let foot = *row == BoundaryRow::NormalFoot;
-            for f in p.faces() {
-                let b = f - ni;
-                out[b] = if foot {
-                    u[mesh.owner[f] as usize] + self.snd_b[b] * self.dn[f]
-                } else {
-                    u_b[b]
-                };
-            }
-        }
-        self.gradient_boundary = out;
     }
 
     /// Gradient at boundary face f: the cell gradient with its normal part
@@ -1205,21 +1150,6 @@ impl SolidMomentum {
 
 /// The owner's gradient `gp` with its normal part replaced by the boundary
 /// normal derivative `g` (eq. 3.23): `gp + n (g − gpᵀn)ᵀ`.
-/// How the faces of each patch enter the least-squares gradient (see
-/// [`SolidMomentum::rows`]).
-fn least_squares_rows(conditions: &[PatchCondition], updated_lagrangian: bool) -> Vec<BoundaryRow> {
-    conditions
-        .iter()
-        .map(|c| match c {
-            PatchCondition::Empty => BoundaryRow::Passive,
-            PatchCondition::Traction(_) | PatchCondition::Pressure(_) if !updated_lagrangian => {
-                BoundaryRow::NormalFoot
-            }
-            _ => BoundaryRow::FaceCentre,
-        })
-        .collect()
-}
-
 fn face_gradient(gp: &Tensor, n: &Vector, g: &Vector) -> Tensor {
     gp + n * (g - gp.transpose() * n).transpose()
 }

@@ -90,14 +90,8 @@ fn unwritable(case: &Case, opts: &RunOptions, dir: &Path, e: &dyn std::fmt::Disp
 /// The bodies of [`set_up`] and the contact pairs between them: everything
 /// `run` validates before it solves (shared by `run` and `check`).
 pub fn set_up_with_contacts(case: &Case) -> Result<(Vec<Body>, ContactSet), InputError> {
-    let mut bodies = set_up(case)?;
+    let bodies = set_up(case)?;
     let contacts = ContactSet::new(case, &bodies)?;
-    for ci in &contacts.interfaces {
-        for side in [&ci.master, &ci.slave] {
-            let b = &mut bodies[side.body];
-            b.momentum.fit_at_face_centres(&b.mesh, &b.geom, side.patch);
-        }
-    }
     crate::initial_overlap::check_initial_overlap(case, &bodies, &contacts)?;
     Ok((bodies, contacts))
 }

@@ -84,8 +84,31 @@ impl MeshGeometry {
                 )));
             }
             if closure[c].norm() > 1e-6 * area_sum[c] {
+                // a face listed the wrong way round adds twice its area
+                // vector to the sum and faces into the cell: name it if
+                // one does
+                let centre = est[c] / nfaces[c] as f64;
+                let reversed = (0..nf).find(|&f| {
+                    let sign = if mesh.owner[f] as usize == c {
+                        1.0
+                    } else if f < ni && mesh.neighbour[f] as usize == c {
+                        -1.0
+                    } else {
+                        return false;
+                    };
+                    let a = self.face_areas[f] * sign;
+                    (closure[c] - a * 2.0).norm() <= 1e-6 * area_sum[c]
+                        && a.dot(&(self.face_centres[f] - centre)) < 0.0
+                });
+                let hint = match reversed {
+                    Some(f) => format!(
+                        "; face {f} closes it if reversed: its points run the wrong way for its owner (cell {}), which the mesh file's faces and owner lists must agree on",
+                        mesh.owner[f]
+                    ),
+                    None => "; a face of the cell is missing, or its points run the wrong way".to_string(),
+                };
                 return Err(MeshError::invalid(format!(
-                    "cell {c} is open: the sum of its face area vectors is {:.3e} of its total face area",
+                    "cell {c} is open: the sum of its face area vectors is {:.3e} of its total face area{hint}",
                     closure[c].norm() / area_sum[c]
                 )));
             }

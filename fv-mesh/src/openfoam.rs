@@ -199,17 +199,28 @@ pub fn read_polymesh(dir: &Path) -> Result<PolyMesh, MeshError> {
         let (entries, _) = lex.list(|lex| lex.named_dict(&[]))?;
         lex.expect_end()?;
         let mut next = n_internal;
-        let mut patches = Vec::with_capacity(entries.len());
+        let mut patches: Vec<Patch> = Vec::with_capacity(entries.len());
         for e in entries {
             let source_type = e.word("type", &lex)?;
             let size = e.int("nFaces", &lex)?;
             let start = e.int("startFace", &lex)?;
+            if patches.iter().any(|p| p.name == e.name) {
+                return Err(lex.error(e.line, format!("patch name '{}' is given twice", e.name)));
+            }
             if size > 0 && start != next {
+                // the patch before it (with faces) ends where it says
+                let before = match patches.iter().rev().find(|p| p.size > 0) {
+                    Some(p) => format!(
+                        "; the patch before it, '{}', has startFace {} and nFaces {}: is one of those wrong?",
+                        p.name, p.start, p.size
+                    ),
+                    None => String::new(),
+                };
                 return Err(lex.error(
                     e.line,
                     format!(
                         "patch '{}' starts at face {start} but face {next} was expected (patches must \
-                         follow the {n_internal} internal faces and each other without gaps)",
+                         follow the {n_internal} internal faces and each other without gaps){before}",
                         e.name
                     ),
                 ));
@@ -1198,6 +1209,38 @@ second
         assert_eq!(path, d.join("boundary"));
         assert!(line.is_some());
         assert!(msg.contains("'right'"), "{msg}");
+        // the patch before it is named as the likely culprit
+        assert!(
+            msg.contains("'left', has startFace 1 and nFaces 1"),
+            "{msg}"
+        );
+        write_mesh(d, FACES, NEIGHBOUR, None);
+
+        // a patch name given twice
+        fs::write(
+            d.join("boundary"),
+            header("polyBoundaryMesh", "boundary", None)
+                + &BOUNDARY.replace("right { type", "left { type"),
+        )
+        .expect("w");
+        let (path, line, msg) = parse_error(read_polymesh(d).expect_err("twice"));
+        assert_eq!(path, d.join("boundary"));
+        assert!(line.is_some());
+        assert!(msg.contains("'left' is given twice"), "{msg}");
+        write_mesh(d, FACES, NEIGHBOUR, None);
+
+        // a boundary face whose points run the wrong way: the open cell
+        // names it
+        fs::write(
+            d.join("faces"),
+            header("faceList", "faces", None) + &FACES.replace("4(0 6 9 3)", "4(3 9 6 0)"),
+        )
+        .expect("w");
+        let mesh = read_polymesh(d).expect("a reversed face still reads");
+        let msg = crate::MeshGeometry::new(&mesh)
+            .expect_err("reversed")
+            .to_string();
+        assert!(msg.contains("face 1 closes it if reversed"), "{msg}");
         write_mesh(d, FACES, NEIGHBOUR, None);
 
         // zone label out of range

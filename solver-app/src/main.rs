@@ -4,7 +4,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use solver_app::case::load_case;
-use solver_app::run::{run_case, set_up_with_contacts, RunError, RunOptions};
+use solver_app::run::{check_support, run_case, set_up_with_contacts, RunError, RunOptions};
 
 /// Finite-volume solver for large-deformation frictional contact.
 #[derive(Parser)]
@@ -64,8 +64,22 @@ fn main() -> ExitCode {
             match set_up_with_contacts(&case) {
                 Ok((bodies, _)) => {
                     print!("{}", solver_app::check::mesh_report(&case, &bodies));
-                    println!("case is valid");
-                    ExitCode::SUCCESS
+                    for n in bodies.iter().flat_map(|b| &b.mesh_type_notes) {
+                        println!("note: {n}");
+                    }
+                    match check_support(&case) {
+                        Ok(note) => {
+                            if let Some(note) = note {
+                                println!("note: {note}");
+                            }
+                            println!("case is valid");
+                            ExitCode::SUCCESS
+                        }
+                        Err(e) => {
+                            eprintln!("error: {e}");
+                            ExitCode::from(2)
+                        }
+                    }
                 }
                 Err(e) => {
                     eprintln!("error: {e}");

@@ -169,6 +169,9 @@ pub struct Body {
     pub extent: f64,
     /// The condition spec of every patch (`None` = traction-free).
     pub patch_specs: Vec<Option<BoundarySpec>>,
+    /// Conditions taken from the mesh file's patch types, for the log
+    /// ([`conditions_from_mesh_types`]).
+    pub mesh_type_notes: Vec<String>,
     /// `plane_stress`: the reported stress has no component along the
     /// out-of-plane axis (`SolidMomentum::unsolved`). Under small strain
     /// Hooke's λ* (eq. 3.17 with λ* = 2μλ/(λ + 2μ)) gives the in-plane
@@ -691,11 +694,23 @@ fn build_body(
         }
         patch_specs[pi] = Some(bc.clone());
     }
+    let (mesh_type_notes, from_mesh) =
+        conditions_from_mesh_types(case, bi, spec, &mesh, &mut patch_specs)?;
     check_one_cell_thick(&mesh, &patch_specs).map_err(|(p, msg)| {
-        src.error(
-            &format!("body[{bi}].boundary.{}", mesh.patches[p].name),
-            msg,
-        )
+        if from_mesh.contains(&p) {
+            src.error(
+                &format!("body[{bi}].mesh"),
+                format!(
+                    "patch '{}' is of type empty in the mesh file and not in the case, so it was taken as type = \"empty\": {msg}; give it a condition in the case",
+                    mesh.patches[p].name
+                ),
+            )
+        } else {
+            src.error(
+                &format!("body[{bi}].boundary.{}", mesh.patches[p].name),
+                msg,
+            )
+        }
     })?;
     let wedge_patches: Vec<usize> = patch_specs
         .iter()
@@ -806,6 +821,7 @@ fn build_body(
         extent,
         plane_stress: spec.material.plane_stress,
         patch_specs,
+        mesh_type_notes,
         rigid_motion: (Vector::zeros(), Tensor::identity(), Vector::zeros()),
         mesh_motion,
         wedge_points,
@@ -818,6 +834,72 @@ fn build_body(
         conditions_saved: Vec::new(),
         force_controls,
     })
+}
+
+/// Patches the case does not list whose OpenFOAM type (polyMesh
+/// `boundary`) is a constraint: `empty`, `symmetryPlane`/`symmetry` and
+/// `wedge` take that condition rather than the traction-free default of an
+/// unlisted patch, which would leave a plane model unheld or cut a
+/// symmetric model in half (a note for the log says so); a `processor`
+/// patch (a piece of a decomposed mesh) is refused, and so is an unlisted
+/// coupled patch (`cyclic*`, `mapped*`), whose coupling is not modelled.
+/// Contact surfaces keep no condition of their own. Returns the notes and
+/// the patches so set.
+fn conditions_from_mesh_types(
+    case: &Case,
+    bi: usize,
+    spec: &BodySpec,
+    mesh: &PolyMesh,
+    patch_specs: &mut [Option<BoundarySpec>],
+) -> Result<(Vec<String>, Vec<usize>), InputError> {
+    let mut notes = Vec::new();
+    let mut set = Vec::new();
+    let in_contact = |patch: &str| {
+        case.contacts.iter().any(|c| {
+            [&c.master, &c.slave]
+                .iter()
+                .any(|(b, p)| *b == spec.name && p == patch)
+        })
+    };
+    for (pi, p) in mesh.patches.iter().enumerate() {
+        let t = p.source_type.as_str();
+        if t.starts_with("processor") && p.size > 0 {
+            return Err(case.source.error(
+                &format!("body[{bi}].mesh"),
+                format!(
+                    "patch '{}' of body '{}' is of type {t}: the mesh is one piece of a decomposed case; reconstruct it (reconstructParMesh) and read the whole mesh",
+                    p.name, spec.name
+                ),
+            ));
+        }
+        if patch_specs[pi].is_some() || in_contact(&p.name) {
+            continue;
+        }
+        let (condition, name) = match t {
+            "empty" => (BoundarySpec::Empty, "empty"),
+            "symmetryPlane" | "symmetry" => (BoundarySpec::Symmetry, "symmetry"),
+            "wedge" => (BoundarySpec::Wedge, "wedge"),
+            _ if p.size > 0
+                && (t.starts_with("cyclic") || t.starts_with("mapped") || t.contains("Cyclic")) =>
+            {
+                return Err(case.source.error(
+                    &format!("body[{bi}].boundary.{}", p.name),
+                    format!(
+                        "patch '{}' of body '{}' is of type {t} in the mesh, a coupling of patches that is not modelled; give it a condition of its own in the case",
+                        p.name, spec.name
+                    ),
+                ));
+            }
+            _ => continue,
+        };
+        notes.push(format!(
+            "body '{}': patch '{}' is not in the case and is of type {t} in the mesh: taken as type = \"{name}\"",
+            spec.name, p.name
+        ));
+        patch_specs[pi] = Some(condition);
+        set.push(pi);
+    }
+    Ok((notes, set))
 }
 
 /// A force control on patch `pi` with the initial secant slope K·A/L: the

@@ -163,34 +163,11 @@ fn run_case_noting(
         inertia.set_time_step(first_dt);
     }
     if let Err(e) = solver.assemble_and_factorise(&bodies, &case.solver.linear) {
-        let msg = e.to_string();
-        if let crate::segregated::SolveError::Unconstrained { body, axis, .. } = &e {
-            let held_by = explicit_contacts_of(case, body);
-            let mut switched = case.clone();
-            for &i in &held_by {
-                switched.contacts[i].coupling = Coupling::Implicit;
-            }
-            if note.is_none() && !held_by.is_empty() && pairs_compatible(&switched) {
-                let note = format!(
-                    "body '{body}' is held in the {axis} direction by contact alone: [[contact]] {} coupled implicitly (explicit coupling applies the contact traction as a load and cannot hold a body)",
-                    contact_names(case, &held_by)
-                );
-                return run_case_noting(&switched, opts, Some(&note));
-            }
-            let hint = if held_by.is_empty() {
-                String::new()
-            } else {
-                format!(
-                    "; held by contact only, it needs coupling = \"implicit\" on [[contact]] {} (explicit coupling applies the contact traction as a load and cannot hold a body)",
-                    contact_names(case, &held_by)
-                )
-            };
-            return Err(RunError::Input(InputError::new(
-                &case.source.path,
-                msg + &hint,
-            )));
+        match unheld_body(case, &e, note.is_none()) {
+            Some(Ok((note, switched))) => return run_case_noting(&switched, opts, Some(&note)),
+            Some(Err(input)) => return Err(RunError::Input(input)),
+            None => failure = Some(e.to_string()),
         }
-        failure = Some(msg);
     }
     // FVC_TRACE=1 prints the residual of every outer iteration, 2 also the
     // contact statistics (debugging aid)
@@ -247,6 +224,9 @@ fn run_case_noting(
     }
     for w in short_tables(case) {
         log.warn(&w);
+    }
+    for n in bodies.iter().flat_map(|b| &b.mesh_type_notes) {
+        log.warn(n);
     }
 
     let tty = std::io::stderr().is_terminal() && !opts.quiet && !opts.no_files;
@@ -765,6 +745,68 @@ fn short_tables(case: &Case) -> Vec<String> {
 }
 
 /// The explicitly coupled contacts a body is in.
+/// What a body that nothing holds in some direction (`e` is
+/// [`SolveError::Unconstrained`], else `None`) makes of the case: when
+/// `may_switch` and explicit contacts hold it, those contacts coupled
+/// implicitly (the note for the log and the changed case); otherwise the
+/// input error naming the body and the axis.
+fn unheld_body(
+    case: &Case,
+    e: &SolveError,
+    may_switch: bool,
+) -> Option<Result<(String, Case), InputError>> {
+    let SolveError::Unconstrained { body, axis, .. } = e else {
+        return None;
+    };
+    let held_by = explicit_contacts_of(case, body);
+    let mut switched = case.clone();
+    for &i in &held_by {
+        switched.contacts[i].coupling = Coupling::Implicit;
+    }
+    if may_switch && !held_by.is_empty() && pairs_compatible(&switched) {
+        let note = format!(
+            "body '{body}' is held in the {axis} direction by contact alone: [[contact]] {} coupled implicitly (explicit coupling applies the contact traction as a load and cannot hold a body)",
+            contact_names(case, &held_by)
+        );
+        return Some(Ok((note, switched)));
+    }
+    let hint = if held_by.is_empty() {
+        String::new()
+    } else {
+        format!(
+            "; held by contact only, it needs coupling = \"implicit\" on [[contact]] {} (explicit coupling applies the contact traction as a load and cannot hold a body)",
+            contact_names(case, &held_by)
+        )
+    };
+    Some(Err(InputError::new(
+        &case.source.path,
+        e.to_string() + &hint,
+    )))
+}
+
+/// What `run` checks before it solves beyond [`set_up_with_contacts`], for
+/// `fvc check`: every body is held in every direction (by its conditions
+/// or by implicit contact). `Ok(Some(note))`: the run will couple the
+/// contacts that alone hold a body implicitly.
+pub fn check_support(case: &Case) -> Result<Option<String>, InputError> {
+    let (mut bodies, contacts) = set_up_with_contacts(case)?;
+    contacts.prepare_conditions(&mut bodies);
+    let mut solver = SegregatedSolver::new(&bodies, &case.solver);
+    match solver.assemble_and_factorise(&bodies, &case.solver.linear) {
+        Ok(()) => Ok(None),
+        Err(e) => match unheld_body(case, &e, true) {
+            Some(Ok((note, switched))) => check_support(&switched).map(|n| {
+                Some(match n {
+                    Some(more) => format!("{note}; {more}"),
+                    None => note,
+                })
+            }),
+            Some(Err(input)) => Err(input),
+            None => Ok(None),
+        },
+    }
+}
+
 fn explicit_contacts_of(case: &Case, body: &str) -> Vec<usize> {
     (0..case.contacts.len())
         .filter(|&i| {

@@ -1205,3 +1205,99 @@ fn a_table_ending_early_is_noted_in_the_log() {
     assert_eq!(code, 0, "{err}");
     assert!(!err.contains("the table ends"), "{err}");
 }
+
+/// Writes a polyMesh of two unit hexahedra along x into `dir/polyMesh`:
+/// patches `left` (x = 0), `right` (x = 2), `walls` (y) of type `walls`
+/// and `frontAndBack` (z) of type `sides`.
+fn write_two_hex_polymesh(dir: &Path, walls: &str, sides: &str) {
+    let d = dir.join("polyMesh");
+    std::fs::create_dir_all(&d).unwrap();
+    let head = |class: &str, object: &str| {
+        format!("FoamFile\n{{\n    version 2.0;\n    format ascii;\n    class {class};\n    object {object};\n}}\n")
+    };
+    let files = [
+        ("points", head("vectorField", "points") + "12\n(\n(0 0 0) (1 0 0) (2 0 0) (0 1 0) (1 1 0) (2 1 0)\n(0 0 1) (1 0 1) (2 0 1) (0 1 1) (1 1 1) (2 1 1)\n)\n"),
+        ("faces", head("faceList", "faces") + "11\n(\n4(1 4 10 7)\n4(0 6 9 3)\n4(2 5 11 8)\n4(0 1 7 6)\n4(3 9 10 4)\n4(1 2 8 7)\n4(4 10 11 5)\n4(0 3 4 1)\n4(6 7 10 9)\n4(1 4 5 2)\n4(7 8 11 10)\n)\n"),
+        ("owner", head("labelList", "owner") + "11\n(\n0 0 1 0 0 1 1 0 0 1 1\n)\n"),
+        ("neighbour", head("labelList", "neighbour") + "1\n(\n1\n)\n"),
+        ("boundary", head("polyBoundaryMesh", "boundary") + &format!("4\n(\n    left {{ type patch; nFaces 1; startFace 1; }}\n    right {{ type patch; nFaces 1; startFace 2; }}\n    walls {{ type {walls}; nFaces 4; startFace 3; }}\n    frontAndBack {{ type {sides}; nFaces 4; startFace 7; }}\n)\n")),
+    ];
+    for (name, text) in files {
+        write(&d, name, text.as_bytes());
+    }
+}
+
+/// An OpenFOAM constraint type on a patch the case does not list is that
+/// condition (not the traction-free default of an unlisted patch), with a
+/// note; a decomposed mesh's processor patch is refused; `fvc check`
+/// refuses what `fvc run` would (a body nothing holds).
+#[test]
+fn polymesh_patch_types_and_check_agree_with_run() {
+    let dir = tempfile::tempdir().unwrap();
+    write_two_hex_polymesh(dir.path(), "wall", "empty");
+    let case = br#"title = "two-hex"
+[time]
+end = 1.0
+steps = 1
+[[body]]
+name = "bar"
+mesh = { polymesh = "polyMesh" }
+material = { model = "linear-elastic", E = 100.0, nu = 0.3 }
+[body.boundary.left]
+type = "displacement"
+value = [0, 0, 0]
+[body.boundary.right]
+type = "traction"
+value = [1, 0, 0]
+"#;
+    let p = write(dir.path(), "case.toml", case);
+    let (code, out, err) = fvc(&["check", p.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.contains("patch 'frontAndBack' is not in the case and is of type empty in the mesh: taken as type = \"empty\""),
+        "{out}"
+    );
+    let (code, outdir, err) = run_quietly(dir.path(), case);
+    assert_eq!(code, 0, "{err}");
+    let log = std::fs::read_to_string(outdir.join("two-hex/log.txt")).unwrap();
+    assert!(log.contains("taken as type = \"empty\""), "{log}");
+    // plane strain: the pull carried by the fixed end, 1 × area 1
+    let summary = std::fs::read_to_string(outdir.join("two-hex/summary.json")).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&summary).unwrap();
+    let fx = v["patches"]["bar/left"]["reaction_force"][0]
+        .as_f64()
+        .unwrap();
+    assert!((fx + 1.0).abs() < 1e-6, "{summary}");
+
+    // a piece of a decomposed mesh
+    write_two_hex_polymesh(dir.path(), "processor", "empty");
+    let (code, _, err) = fvc(&["check", p.to_str().unwrap()]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("'walls'") && err.contains("reconstructParMesh"),
+        "{err}"
+    );
+
+    // a periodic patch the case leaves out
+    write_two_hex_polymesh(dir.path(), "cyclic", "empty");
+    let (code, _, err) = fvc(&["check", p.to_str().unwrap()]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("body[0].boundary.walls") && err.contains("cyclic"),
+        "{err}"
+    );
+
+    // nothing holds the bar in z: check says so, as run does
+    write_two_hex_polymesh(dir.path(), "wall", "patch");
+    let free = String::from_utf8_lossy(case).replace(
+        "[body.boundary.left]\ntype = \"displacement\"\nvalue = [0, 0, 0]",
+        "[body.boundary.left]\ntype = \"symmetry\"",
+    );
+    let p = write(dir.path(), "case.toml", free.as_bytes());
+    let (code, _, err) = fvc(&["check", p.to_str().unwrap()]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("is not held in the"), "{err}");
+    let (code, _, err) = run_quietly(dir.path(), free.as_bytes());
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("is not held in the"), "{err}");
+}

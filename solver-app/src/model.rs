@@ -872,7 +872,7 @@ fn conditions_from_mesh_types(
                 ),
             ));
         }
-        if patch_specs[pi].is_some() || in_contact(&p.name) {
+        if p.size == 0 || patch_specs[pi].is_some() || in_contact(&p.name) {
             continue;
         }
         let (condition, name) = match t {

@@ -890,6 +890,11 @@ pub fn select_body(mesh: &PolyMesh, zone: Option<&str>) -> Result<PolyMesh, Mesh
                 names.join(", ")
             )));
         };
+        if z.cells.is_empty() {
+            return Err(MeshError::invalid(format!(
+                "zone '{name}' has no cells (in OpenFOAM's cellZones: its cellLabels list is missing or empty)"
+            )));
+        }
         return mesh.subset(&z.cells);
     }
     let regions = face_connected_regions(mesh);
@@ -1078,6 +1083,11 @@ second
         let e = select_body(&m, Some("third")).expect_err("unknown zone");
         assert!(e.to_string().contains("first, second"), "{e}");
         assert_eq!(select_body(&m, None).expect("all").n_cells, 2);
+        // a zone without cells says so (not "the mesh has no cells")
+        let mut empty = m.clone();
+        empty.cell_zones[0].cells.clear();
+        let e = select_body(&empty, Some("first")).expect_err("empty zone");
+        assert!(e.to_string().contains("zone 'first' has no cells"), "{e}");
 
         // a case directory or the parent of polyMesh are accepted too
         let case = tempfile::tempdir().expect("tempdir");

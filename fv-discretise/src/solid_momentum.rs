@@ -240,6 +240,9 @@ pub struct SolidMomentum {
     rc_carried: Vec<Vector>,
     /// Body force per unit volume ρb (eq. 3.18), per cell; empty = none.
     pub body_force: Vec<Vector>,
+    /// α_RC of this body instead of [`MomentumParams::rhie_chow`] (set by
+    /// the solver for cell shapes the thesis's 0.1 does not hold).
+    pub rhie_chow_override: Option<f64>,
 }
 
 /// Wedge face f, rotation `r` from the mid-plane onto its plane, unit
@@ -332,6 +335,7 @@ impl SolidMomentum {
             body_force: Vec::new(),
             rc_increment: Vec::new(),
             rc_carried: Vec::new(),
+            rhie_chow_override: None,
         };
         s.update_geometry(mesh, geom);
         s
@@ -1033,7 +1037,7 @@ impl SolidMomentum {
         let mut residual = std::mem::take(&mut self.residual);
         let mut face_force = std::mem::take(&mut self.face_force);
         let mut rc_increment = std::mem::take(&mut self.rc_increment);
-        let alpha = params.rhie_chow;
+        let alpha = self.rhie_chow_override.unwrap_or(params.rhie_chow);
         let carry = ul && params.rhie_chow_history == RhieChowHistory::Accumulated;
         if carry && self.rc_carried.len() != ni {
             // once per body: nothing is carried before the first residual

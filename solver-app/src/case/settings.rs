@@ -211,6 +211,10 @@ pub struct SolverSettings {
     pub linear: LinearSettings,
     /// Rhie–Chow coefficient α_RC (>= 0, default 0.1).
     pub rhie_chow: f64,
+    /// Whether the case gives `rhie_chow`; if not, a body with pyramids,
+    /// or with tetrahedra under large strain, takes 1
+    /// (`model::rhie_chow_for_cell_shapes`).
+    pub rhie_chow_given: bool,
     /// What the Rhie–Chow term acts on under large strain (default the
     /// increment, as the thesis).
     pub rhie_chow_history: RhieChowHistory,
@@ -235,6 +239,7 @@ impl Default for SolverSettings {
             on_nonconvergence: OnNonConvergence::Abort,
             linear: LinearSettings::default(),
             rhie_chow: 0.1,
+            rhie_chow_given: false,
             rhie_chow_history: RhieChowHistory::Incremental,
             acceleration: Acceleration::None,
             acceleration_depth: 10,
@@ -461,6 +466,7 @@ pub(crate) fn solver(t: &Table<'_>, defaults: &SolverSettings) -> Res<SolverSett
         rhie_chow: t.opt("rhie_chow", d.rhie_chow, |n| {
             n.f64_if(|x| x >= 0.0, "be >= 0")
         })?,
+        rhie_chow_given: t.has("rhie_chow"),
         rhie_chow_history: t.opt("rhie_chow_history", d.rhie_chow_history, |n| {
             n.choice(
                 "Rhie–Chow history",

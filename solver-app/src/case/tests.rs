@@ -160,6 +160,7 @@ every = 5
                 max_iterations: 50
             },
             rhie_chow: 0.0,
+            rhie_chow_given: true,
             rhie_chow_history: fv_discretise::RhieChowHistory::Accumulated,
             acceleration: Acceleration::Anderson,
             acceleration_depth: 8,

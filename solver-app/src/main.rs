@@ -62,12 +62,12 @@ fn main() -> ExitCode {
                 }
             };
             match set_up_with_contacts(&case) {
-                Ok((bodies, _)) => {
+                Ok((bodies, contacts)) => {
                     print!("{}", solver_app::check::mesh_report(&case, &bodies));
-                    for n in bodies.iter().flat_map(|b| &b.mesh_type_notes) {
+                    for n in bodies.iter().flat_map(|b| &b.setup_notes) {
                         println!("note: {n}");
                     }
-                    match check_support(&case) {
+                    match check_support(&case, bodies, contacts) {
                         Ok(note) => {
                             if let Some(note) = note {
                                 println!("note: {note}");

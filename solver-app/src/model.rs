@@ -169,9 +169,11 @@ pub struct Body {
     pub extent: f64,
     /// The condition spec of every patch (`None` = traction-free).
     pub patch_specs: Vec<Option<BoundarySpec>>,
-    /// Conditions taken from the mesh file's patch types, for the log
-    /// ([`conditions_from_mesh_types`]).
-    pub mesh_type_notes: Vec<String>,
+    /// What the set-up chose that the case did not say, for the log and
+    /// `fvc check`: conditions taken from the mesh file's patch types
+    /// ([`conditions_from_mesh_types`]), α_RC by cell shape
+    /// ([`rhie_chow_for_cell_shapes`]).
+    pub setup_notes: Vec<String>,
     /// `plane_stress`: the reported stress has no component along the
     /// out-of-plane axis (`SolidMomentum::unsolved`). Under small strain
     /// Hooke's λ* (eq. 3.17 with λ* = 2μλ/(λ + 2μ)) gives the in-plane
@@ -694,7 +696,7 @@ fn build_body(
         }
         patch_specs[pi] = Some(bc.clone());
     }
-    let (mesh_type_notes, from_mesh) =
+    let (mut setup_notes, from_mesh) =
         conditions_from_mesh_types(case, bi, spec, &mesh, &mut patch_specs)?;
     check_one_cell_thick(&mesh, &patch_specs).map_err(|(p, msg)| {
         if from_mesh.contains(&p) {
@@ -758,11 +760,10 @@ fn build_body(
     }
     let updated_lagrangian = law.is_updated_lagrangian();
     let mut momentum = SolidMomentum::new(&mesh, &geom, law, conditions);
-    let mut mesh_type_notes = mesh_type_notes;
     if !case.solver.rhie_chow_given {
         if let Some(why) = rhie_chow_for_cell_shapes(&mesh, updated_lagrangian) {
             momentum.rhie_chow_override = Some(1.0);
-            mesh_type_notes.push(format!(
+            setup_notes.push(format!(
                 "body '{}': {why}, so rhie_chow = 1 for it (the thesis's 0.1 does not hold such cells; give [solver] rhie_chow to choose)",
                 spec.name
             ));
@@ -831,7 +832,7 @@ fn build_body(
         extent,
         plane_stress: spec.material.plane_stress,
         patch_specs,
-        mesh_type_notes,
+        setup_notes,
         rigid_motion: (Vector::zeros(), Tensor::identity(), Vector::zeros()),
         mesh_motion,
         wedge_points,
@@ -859,22 +860,17 @@ pub fn rhie_chow_for_cell_shapes(
     mesh: &PolyMesh,
     updated_lagrangian: bool,
 ) -> Option<&'static str> {
-    let mut faces = vec![0u8; mesh.n_cells];
-    let mut quads = vec![0u8; mesh.n_cells];
-    let ni = mesh.n_internal_faces();
-    for f in 0..mesh.n_faces() {
-        let quad = mesh.face(f).len() == 4;
-        let mut count = |c: usize| {
-            faces[c] = faces[c].saturating_add(1);
-            quads[c] = quads[c].saturating_add(quad as u8);
-        };
-        count(mesh.owner[f] as usize);
-        if f < ni {
-            count(mesh.neighbour[f] as usize);
-        }
+    let (offsets, faces) = mesh.cell_faces();
+    let (mut pyramids, mut tets) = (false, false);
+    for c in 0..mesh.n_cells {
+        let own = &faces[offsets[c] as usize..offsets[c + 1] as usize];
+        let quads = own
+            .iter()
+            .filter(|&&f| mesh.face(f as usize).len() == 4)
+            .count();
+        pyramids |= own.len() == 5 && quads == 1;
+        tets |= own.len() == 4;
     }
-    let pyramids = faces.iter().zip(&quads).any(|(&n, &q)| n == 5 && q == 1);
-    let tets = faces.contains(&4);
     if pyramids {
         Some("its mesh has pyramids")
     } else if tets && updated_lagrangian {

@@ -225,7 +225,7 @@ fn run_case_noting(
     for w in short_tables(case) {
         log.warn(&w);
     }
-    for n in bodies.iter().flat_map(|b| &b.mesh_type_notes) {
+    for n in bodies.iter().flat_map(|b| &b.setup_notes) {
         log.warn(n);
     }
 
@@ -785,25 +785,32 @@ fn unheld_body(
 }
 
 /// What `run` checks before it solves beyond [`set_up_with_contacts`], for
-/// `fvc check`: every body is held in every direction (by its conditions
-/// or by implicit contact). `Ok(Some(note))`: the run will couple the
-/// contacts that alone hold a body implicitly.
-pub fn check_support(case: &Case) -> Result<Option<String>, InputError> {
-    let (mut bodies, contacts) = set_up_with_contacts(case)?;
+/// `fvc check` on the bodies and contacts that built: every body is held
+/// in every direction (by its conditions or by implicit contact).
+/// `Ok(Some(note))`: the run will couple the contacts that alone hold a
+/// body implicitly.
+pub fn check_support(
+    case: &Case,
+    mut bodies: Vec<Body>,
+    contacts: ContactSet,
+) -> Result<Option<String>, InputError> {
     contacts.prepare_conditions(&mut bodies);
     let mut solver = SegregatedSolver::new(&bodies, &case.solver);
-    match solver.assemble_and_factorise(&bodies, &case.solver.linear) {
-        Ok(()) => Ok(None),
-        Err(e) => match unheld_body(case, &e, true) {
-            Some(Ok((note, switched))) => check_support(&switched).map(|n| {
-                Some(match n {
-                    Some(more) => format!("{note}; {more}"),
-                    None => note,
-                })
-            }),
-            Some(Err(input)) => Err(input),
-            None => Ok(None),
-        },
+    let Err(e) = solver.assemble_and_factorise(&bodies, &case.solver.linear) else {
+        return Ok(None);
+    };
+    match unheld_body(case, &e, true) {
+        Some(Ok((note, switched))) => {
+            // the switched couplings build other contact conditions
+            let (bodies, contacts) = set_up_with_contacts(&switched)?;
+            let more = check_support(&switched, bodies, contacts)?;
+            Ok(Some(match more {
+                Some(more) => format!("{note}; {more}"),
+                None => note,
+            }))
+        }
+        Some(Err(input)) => Err(input),
+        None => Ok(None),
     }
 }
 

@@ -205,20 +205,27 @@ fn second_order_on_distorted_hexahedra() {
     check_order("distorted hexahedra", &errors);
 }
 
+/// Errors on the Kuhn-tetrahedra cubes n = 3, 6, 12, 24 (`traction`: see
+/// [`solve`]).
+fn tetrahedra_errors(traction: bool) -> Vec<(usize, f64, usize)> {
+    [3usize, 6, 12, 24]
+        .into_iter()
+        .map(|n| {
+            let mesh = fv_mesh::generators::box_tet_mesh(
+                Vector::zeros(),
+                Vector::new(1.0, 1.0, 1.0),
+                [n, n, n],
+            )
+            .unwrap();
+            let (err, it) = solve(mesh, traction);
+            (n, err, it)
+        })
+        .collect()
+}
+
 #[test]
 fn second_order_on_tetrahedra() {
-    let mut errors = Vec::new();
-    for n in [3usize, 6, 12, 24] {
-        let mesh = fv_mesh::generators::box_tet_mesh(
-            Vector::zeros(),
-            Vector::new(1.0, 1.0, 1.0),
-            [n, n, n],
-        )
-        .unwrap();
-        let (err, it) = solve(mesh, false);
-        errors.push((n, err, it));
-    }
-    check_order("tetrahedra", &errors);
+    check_order("tetrahedra", &tetrahedra_errors(false));
 }
 
 /// Half the faces carry the exact traction (eq. 3.23 sets their values).
@@ -226,16 +233,5 @@ fn second_order_on_tetrahedra() {
 /// 2.568e-3 (order 1.97–2.00) in 50–52 outer iterations.
 #[test]
 fn second_order_on_tetrahedra_with_traction_faces() {
-    let mut errors = Vec::new();
-    for n in [3usize, 6, 12, 24] {
-        let mesh = fv_mesh::generators::box_tet_mesh(
-            Vector::zeros(),
-            Vector::new(1.0, 1.0, 1.0),
-            [n, n, n],
-        )
-        .unwrap();
-        let (err, it) = solve(mesh, true);
-        errors.push((n, err, it));
-    }
-    check_order("tetrahedra, traction faces", &errors);
+    check_order("tetrahedra, traction faces", &tetrahedra_errors(true));
 }

@@ -43,6 +43,7 @@ p = argparse.ArgumentParser()
 p.add_argument('nr', type=int); p.add_argument('nt', type=int)
 p.add_argument('--etype', default='CAX8')
 p.add_argument('--K', type=float, default=1000.0)
+p.add_argument('--mu', type=float, default=0.0, help='Coulomb friction between the shells (stick slope K)')
 p.add_argument('--dmax', type=float, default=4.0)
 p.add_argument('--dt', type=float, default=0.1)
 p.add_argument('--grade', type=float, default=1.0)
@@ -137,14 +138,16 @@ L.append("""*MATERIAL, NAME=NH
 1.0e4, 0.3
 *SOLID SECTION, ELSET=EIN, MATERIAL=NH
 *SOLID SECTION, ELSET=EOUT, MATERIAL=NH
-*SOLID SECTION, ELSET=EPLATE, MATERIAL=STIFF
-*SURFACE INTERACTION, NAME=SI
-""")
-if a.hard: L.append("*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD")
-else: L.append("*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR"); L.append(f"{a.K:g}")
+*SOLID SECTION, ELSET=EPLATE, MATERIAL=STIFF""")
+# SI: plate / outer shell, frictionless; SS: between the shells, Coulomb mu
+for name, mu in (("SI", 0.0), ("SS", a.mu)):
+    L.append(f"*SURFACE INTERACTION, NAME={name}")
+    if a.hard: L.append("*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD")
+    else: L.append("*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR"); L.append(f"{a.K:g}")
+    if mu > 0: L.append("*FRICTION"); L.append(f"{mu:g}, {a.K:g}")
 L.append(f"*CONTACT PAIR, INTERACTION=SI, TYPE={a.ctype}" + (", SMALL SLIDING" if a.small else ""))
 L.append("S_OUT_OUT, S_PLATE")
-L.append(f"*CONTACT PAIR, INTERACTION=SI, TYPE={a.ctype}" + (", SMALL SLIDING" if a.small else ""))
+L.append(f"*CONTACT PAIR, INTERACTION=SS, TYPE={a.ctype}" + (", SMALL SLIDING" if a.small else ""))
 L.append("S_OUT_IN, S_IN_OUT" if a.slave == 'outer' else "S_IN_OUT, S_OUT_IN")
 L.append("*BOUNDARY\nNAXIS, 1, 1, 0.\nNRIM, 2, 2, 0.\nNPLATE, 1, 1, 0.")
 tp = sorted(set([round(0.25*k, 6) for k in range(1, int(round(a.dmax/0.25))+1)] + [1.5]))

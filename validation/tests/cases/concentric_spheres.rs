@@ -423,7 +423,8 @@ fn shell_under_a_pole_load_matches_finite_elements() {
 /// pair. A peer code agrees with it: CalculiX on the axisymmetric problem,
 /// mesh-converged (CAX8 4 × 30 to 16 × 120 within 0.2 %), gives 0.512 /
 /// 0.721 / 1.197 N, 0.7 % under the section; its coarse linear elements
-/// (CAX4 3 × 15, 3-D C3D8 4 × 16) are 3–5 % stiffer than that. The fine 3-D mesh follows it within 0.8 %. The same solver and
+/// (CAX4 3 × 15, 3-D C3D8 4 × 16) are 2.5–5 % stiffer than that. The
+/// fine 3-D mesh follows the section within 0.8 %. The same solver and
 /// wedge match an independent finite-element solution of one shell under
 /// a pole load within 0.5 % ([`shell_under_a_pole_load_matches_finite_elements`]);
 /// Abaqus and FEBio ran meshes as coarse as case.toml (thesis §5.3.4),

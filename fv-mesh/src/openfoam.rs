@@ -1208,16 +1208,22 @@ second
         assert!(msg.contains("nCells: 3"), "{msg}");
         write_mesh(d, FACES, NEIGHBOUR, None);
 
+        // the message for `boundary` with `from` replaced by `to`, after
+        // asserting that it names the file and a line
+        let boundary_error = |from: &str, to: &str| {
+            fs::write(
+                d.join("boundary"),
+                header("polyBoundaryMesh", "boundary", None) + &BOUNDARY.replace(from, to),
+            )
+            .expect("w");
+            let (path, line, msg) = parse_error(read_polymesh(d).expect_err(to));
+            assert_eq!(path, d.join("boundary"));
+            assert!(line.is_some());
+            msg
+        };
+
         // patch gap
-        fs::write(
-            d.join("boundary"),
-            header("polyBoundaryMesh", "boundary", None)
-                + &BOUNDARY.replace("startFace 2;", "startFace 3;"),
-        )
-        .expect("w");
-        let (path, line, msg) = parse_error(read_polymesh(d).expect_err("gap"));
-        assert_eq!(path, d.join("boundary"));
-        assert!(line.is_some());
+        let msg = boundary_error("startFace 2;", "startFace 3;");
         assert!(msg.contains("'right'"), "{msg}");
         // the patch before it is named as the likely culprit
         assert!(
@@ -1227,15 +1233,7 @@ second
         write_mesh(d, FACES, NEIGHBOUR, None);
 
         // a patch name given twice
-        fs::write(
-            d.join("boundary"),
-            header("polyBoundaryMesh", "boundary", None)
-                + &BOUNDARY.replace("right { type", "left { type"),
-        )
-        .expect("w");
-        let (path, line, msg) = parse_error(read_polymesh(d).expect_err("twice"));
-        assert_eq!(path, d.join("boundary"));
-        assert!(line.is_some());
+        let msg = boundary_error("right { type", "left { type");
         assert!(msg.contains("'left' is given twice"), "{msg}");
         write_mesh(d, FACES, NEIGHBOUR, None);
 

@@ -923,9 +923,7 @@ fn conditions_from_mesh_types(
             "empty" => (BoundarySpec::Empty, "empty"),
             "symmetryPlane" | "symmetry" => (BoundarySpec::Symmetry, "symmetry"),
             "wedge" => (BoundarySpec::Wedge, "wedge"),
-            _ if p.size > 0
-                && (t.starts_with("cyclic") || t.starts_with("mapped") || t.contains("Cyclic")) =>
-            {
+            _ if t.starts_with("cyclic") || t.starts_with("mapped") || t.contains("Cyclic") => {
                 return Err(case.source.error(
                     &format!("body[{bi}].boundary.{}", p.name),
                     format!(

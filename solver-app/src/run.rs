@@ -744,7 +744,6 @@ fn short_tables(case: &Case) -> Vec<String> {
     out
 }
 
-/// The explicitly coupled contacts a body is in.
 /// What a body that nothing holds in some direction (`e` is
 /// [`SolveError::Unconstrained`], else `None`) makes of the case: when
 /// `may_switch` and explicit contacts hold it, those contacts coupled
@@ -814,6 +813,7 @@ pub fn check_support(
     }
 }
 
+/// The explicitly coupled contacts a body is in.
 fn explicit_contacts_of(case: &Case, body: &str) -> Vec<usize> {
     (0..case.contacts.len())
         .filter(|&i| {

@@ -1268,19 +1268,22 @@ value = [1, 0, 0]
         .unwrap();
     assert!((fx + 1.0).abs() < 1e-6, "{summary}");
 
+    // `fvc check`'s message for the mesh with its `walls` patch of type
+    // `walls`, after asserting that it refuses it
+    let refused = |walls: &str| {
+        write_two_hex_polymesh(dir.path(), walls, "empty");
+        let (code, _, err) = fvc(&["check", p.to_str().unwrap()]);
+        assert_eq!(code, 2, "{err}");
+        err
+    };
     // a piece of a decomposed mesh
-    write_two_hex_polymesh(dir.path(), "processor", "empty");
-    let (code, _, err) = fvc(&["check", p.to_str().unwrap()]);
-    assert_eq!(code, 2, "{err}");
+    let err = refused("processor");
     assert!(
         err.contains("'walls'") && err.contains("reconstructParMesh"),
         "{err}"
     );
-
     // a periodic patch the case leaves out
-    write_two_hex_polymesh(dir.path(), "cyclic", "empty");
-    let (code, _, err) = fvc(&["check", p.to_str().unwrap()]);
-    assert_eq!(code, 2, "{err}");
+    let err = refused("cyclic");
     assert!(
         err.contains("body[0].boundary.walls") && err.contains("cyclic"),
         "{err}"

@@ -1,0 +1,28 @@
+//! Nonlinear solution methods for the discretised balance of an increment.
+//!
+//! - [`NonlinearMethod`]: the methods by case-file name (`[solver]
+//!   nonlinear`), the seam between the time loop and the solvers.
+//! - [`NewtonKrylov`]: Jacobian-free Newton–Krylov over any
+//!   [`NonlinearProblem`] — matrix-free Jacobian products by finite
+//!   differences with the problem's frozen data kept ([`Frozen`]),
+//!   right-preconditioned restarted [`Gmres`], Eisenstat–Walker
+//!   [`Forcing`] terms and a non-monotone backtracking line search.
+//!
+//! The segregated method of the thesis lives with the model it iterates
+//! (`solver-app`); this crate holds what does not depend on the model.
+#![warn(missing_docs)]
+
+mod forcing;
+mod gmres;
+pub mod line_search;
+mod method;
+mod newton_krylov;
+mod problem;
+pub mod vector_ops;
+
+pub use forcing::{Forcing, ForcingParams};
+pub use gmres::{Gmres, GmresInfo, GmresParams, KrylovSystem};
+pub use line_search::LineSearchParams;
+pub use method::{NonlinearMethod, UnknownMethod};
+pub use newton_krylov::{NewtonError, NewtonInfo, NewtonKrylov, NewtonParams};
+pub use problem::{Frozen, Inadmissible, NonlinearProblem};

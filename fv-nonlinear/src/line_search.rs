@@ -1,0 +1,140 @@
+//! Globalisation of the Newton step: backtracking on ‖F‖ with a
+//! non-monotone acceptance test (Grippo, Lampariello & Lucidi 1986) and
+//! safeguarded quadratic interpolation of the step length (Dennis &
+//! Schnabel §6.3; Eisenstat & Walker 1994 for the inexact-Newton
+//! sufficient decrease 1 − α λ (1 − η)).
+//!
+//! The non-monotone reference — the largest residual norm of the last
+//! few accepted iterates — lets a step through that raises ‖F‖ for a while,
+//! as a contact active set that changes between two Newton iterates does
+//! (MOOSE's contact "ping-pong"); a monotone test would cut such steps to
+//! nothing.
+
+/// Parameters of the line search.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LineSearchParams {
+    /// α of the sufficient-decrease test.
+    pub sufficient_decrease: f64,
+    /// Accepted iterates whose largest residual norm is the reference.
+    pub window: usize,
+    /// Most step reductions per Newton iteration.
+    pub max_backtracks: usize,
+    /// Smallest and largest factor of one reduction.
+    pub min_factor: f64,
+    /// Full steps that change the problem's frozen data (a contact active
+    /// set, [`crate::NonlinearProblem::changes_at_last_renewal`]) accepted
+    /// per solve whatever their residual: across such a change ‖F‖ is no
+    /// measure of progress (a penalty step into an obstacle that the
+    /// linearisation did not know raises it by ε times the penetration,
+    /// and the next step, which knows it, removes it). Abaqus calls them
+    /// severe discontinuity iterations.
+    pub discontinuity_steps: usize,
+    /// See `min_factor`.
+    pub max_factor: f64,
+}
+
+impl Default for LineSearchParams {
+    fn default() -> Self {
+        LineSearchParams {
+            sufficient_decrease: 1e-4,
+            window: 5,
+            max_backtracks: 10,
+            min_factor: 0.1,
+            discontinuity_steps: 8,
+            max_factor: 0.5,
+        }
+    }
+}
+
+/// The reference norms of the non-monotone test.
+#[derive(Debug, Clone)]
+pub struct NonMonotone {
+    norms: Vec<f64>,
+    window: usize,
+}
+
+impl NonMonotone {
+    /// An empty history of `window` iterates (at least one).
+    pub fn new(window: usize) -> Self {
+        NonMonotone {
+            norms: Vec::with_capacity(window.max(1)),
+            window: window.max(1),
+        }
+    }
+
+    /// Records the residual norm of an accepted iterate.
+    pub fn push(&mut self, norm: f64) {
+        if self.norms.len() == self.window {
+            self.norms.remove(0);
+        }
+        self.norms.push(norm);
+    }
+
+    /// The largest recorded norm (∞ when none).
+    pub fn reference(&self) -> f64 {
+        if self.norms.is_empty() {
+            return f64::INFINITY;
+        }
+        self.norms.iter().copied().fold(f64::NEG_INFINITY, f64::max)
+    }
+}
+
+/// Whether a trial with norm `trial` at step length `lambda` decreases
+/// enough against the non-monotone `reference`, for a Newton step solved
+/// with forcing term `eta`.
+pub fn sufficient(trial: f64, reference: f64, lambda: f64, eta: f64, p: &LineSearchParams) -> bool {
+    trial.is_finite() && trial <= (1.0 - p.sufficient_decrease * lambda * (1.0 - eta)) * reference
+}
+
+/// The next step length after `lambda` failed with trial norm `trial`
+/// from the current norm `f0`: the minimiser of the quadratic through
+/// φ(0) = f0², φ′(0) = −2 (1 − η) f0² and φ(λ) = trial², kept within
+/// [min_factor, max_factor] × λ; an inadmissible or non-finite trial
+/// takes the largest reduction.
+pub fn next_length(lambda: f64, f0: f64, trial: f64, eta: f64, p: &LineSearchParams) -> f64 {
+    if !trial.is_finite() {
+        return p.min_factor * lambda;
+    }
+    let phi0 = f0 * f0;
+    let dphi0 = -2.0 * (1.0 - eta) * phi0;
+    let phi = trial * trial;
+    let curvature = phi - phi0 - dphi0 * lambda;
+    let q = if curvature > 0.0 {
+        -dphi0 * lambda * lambda / (2.0 * curvature)
+    } else {
+        p.max_factor * lambda
+    };
+    q.clamp(p.min_factor * lambda, p.max_factor * lambda)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn non_monotone_reference_is_the_window_maximum() {
+        let mut h = NonMonotone::new(3);
+        assert_eq!(h.reference(), f64::INFINITY);
+        for v in [5.0, 1.0, 2.0, 0.5] {
+            h.push(v);
+        }
+        // 5.0 left the window
+        assert_eq!(h.reference(), 2.0);
+    }
+
+    #[test]
+    fn interpolated_length_is_safeguarded() {
+        let p = LineSearchParams::default();
+        // a trial far above the start: the quadratic's minimum is tiny → 0.1 λ
+        assert_eq!(next_length(1.0, 1.0, 100.0, 0.0, &p), 0.1);
+        // a trial just above: the minimum is near λ/2 or beyond → 0.5 λ
+        assert_eq!(next_length(1.0, 1.0, 1.0, 0.0, &p), 0.5);
+        // exact quadratic: φ(λ) = (1 − λ)² + 3λ² → minimum at λ = 1/4
+        let trial = (0.0f64 + 3.0).sqrt();
+        assert!((next_length(1.0, 1.0, trial, 0.0, &p) - 0.25).abs() < 1e-12);
+        assert_eq!(next_length(0.5, 1.0, f64::NAN, 0.0, &p), 0.05);
+        assert!(sufficient(0.5, 1.0, 1.0, 0.1, &p));
+        assert!(!sufficient(1.0, 1.0, 1.0, 0.1, &p));
+        assert!(!sufficient(f64::NAN, 1.0, 1.0, 0.1, &p));
+    }
+}

@@ -1,0 +1,352 @@
+//! Jacobian-free Newton–Krylov (Knoll & Keyes, J. Comput. Phys. 193,
+//! 2004): Newton's method on F(x) = 0 whose linear systems J δ = −F are
+//! solved by [`Gmres`] with the Jacobian applied matrix-free,
+//!
+//! J v ≈ (F(x + h v) − F(x)) / h,   h = √ε (‖x‖ + s √n) / ‖v‖
+//!
+//! (s the problem's typical size of an unknown, so that the step is not
+//! lost in round-off when x is zero), with the data the problem freezes
+//! for a step — contact candidate pairs — kept through the products and
+//! renewed at every new base point ([`Frozen`]). The preconditioner is the
+//! problem's approximation of −J ([`NonlinearProblem::precondition`]);
+//! the forcing terms are Eisenstat–Walker's ([`Forcing`]); the step is
+//! globalised by a non-monotone backtracking line search
+//! ([`crate::line_search`]).
+//!
+//! Written by hand because the pieces have to fit the finite-volume
+//! residual: the Jacobian products must reuse the problem's frozen contact
+//! pairs and a preconditioner built from the segregated operator, which
+//! no Rust crate's Newton solver offers (PETSc's SNES does, behind FFI).
+use crate::forcing::{Forcing, ForcingParams};
+use crate::gmres::{Gmres, GmresParams, KrylovSystem};
+use crate::line_search::{next_length, sufficient, LineSearchParams, NonMonotone};
+use crate::problem::{Frozen, Inadmissible, NonlinearProblem};
+use crate::vector_ops::norm;
+
+/// Parameters of a Newton–Krylov solve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NewtonParams {
+    /// Converged when ‖F‖ ≤ tolerance × [`NonlinearProblem::residual_reference`].
+    pub tolerance: f64,
+    /// Most Newton iterations.
+    pub max_iterations: usize,
+    /// Krylov restart length and iteration cap per Newton step (its
+    /// `tolerance` is replaced by the forcing term).
+    pub krylov: GmresParams,
+    /// Forcing terms.
+    pub forcing: ForcingParams,
+    /// Line search.
+    pub line_search: LineSearchParams,
+}
+
+impl Default for NewtonParams {
+    fn default() -> Self {
+        NewtonParams {
+            tolerance: 1e-6,
+            max_iterations: 50,
+            krylov: GmresParams {
+                restart: 30,
+                max_iterations: 200,
+                tolerance: 0.1,
+            },
+            forcing: ForcingParams::default(),
+            line_search: LineSearchParams::default(),
+        }
+    }
+}
+
+/// Outcome of a solve.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct NewtonInfo {
+    /// Newton iterations (steps taken).
+    pub iterations: usize,
+    /// Krylov iterations, summed over the steps.
+    pub krylov_iterations: usize,
+    /// Residual evaluations (base points, line-search trials and Jacobian products).
+    pub residual_evaluations: usize,
+    /// Step reductions of the line search.
+    pub backtracks: usize,
+    /// Full steps accepted across a change of the frozen data whatever
+    /// their residual ([`LineSearchParams::discontinuity_steps`]).
+    pub discontinuity_steps: usize,
+    /// ‖F‖ / reference at exit.
+    pub residual: f64,
+    /// Whether the tolerance was reached.
+    pub converged: bool,
+}
+
+impl NewtonInfo {
+    /// Adds the counts of `other` (a later solve of the same increment).
+    pub fn accumulate(&mut self, other: &NewtonInfo) {
+        self.iterations += other.iterations;
+        self.krylov_iterations += other.krylov_iterations;
+        self.residual_evaluations += other.residual_evaluations;
+        self.backtracks += other.backtracks;
+        self.discontinuity_steps += other.discontinuity_steps;
+        self.residual = other.residual;
+        self.converged = other.converged;
+    }
+}
+
+/// Why a solve stopped without a usable iterate.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum NewtonError {
+    /// The residual cannot be evaluated at the starting point.
+    #[error("the starting point is not admissible: {0}")]
+    Start(Inadmissible),
+    /// No step length decreased the residual.
+    #[error("Newton iteration {iteration}: the line search found no step that decreases the residual (relative residual {residual:.3e}){}", .reason.as_ref().map(|r| format!("; last trial: {r}")).unwrap_or_default())]
+    LineSearch {
+        /// The Newton iteration.
+        iteration: usize,
+        /// Relative residual at the point it could not leave.
+        residual: f64,
+        /// Why the last trial was refused, if it was inadmissible.
+        reason: Option<String>,
+        /// The counts until then.
+        info: NewtonInfo,
+    },
+    /// The preconditioner could not be built.
+    #[error("Newton iteration {iteration}: preconditioner: {reason}")]
+    Preconditioner {
+        /// The Newton iteration.
+        iteration: usize,
+        /// What failed.
+        reason: String,
+        /// The counts until then.
+        info: NewtonInfo,
+    },
+}
+
+/// Square root of the machine epsilon, the relative size of the
+/// finite-difference step.
+const SQRT_EPS: f64 = 1.4901161193847656e-8;
+
+/// The Newton solver and its workspace (allocated once per problem size).
+#[derive(Debug, Clone)]
+pub struct NewtonKrylov {
+    /// Parameters of the next solves.
+    pub params: NewtonParams,
+    gmres: Gmres,
+    f: Vec<f64>,
+    dx: Vec<f64>,
+    x_trial: Vec<f64>,
+    f_trial: Vec<f64>,
+    x_probe: Vec<f64>,
+    f_probe: Vec<f64>,
+}
+
+/// −J of the problem at a base point, by finite differences, and its
+/// preconditioner, for GMRES.
+struct NegativeJacobian<'a, P: NonlinearProblem> {
+    problem: &'a mut P,
+    x: &'a [f64],
+    fx: &'a [f64],
+    x_probe: &'a mut [f64],
+    f_probe: &'a mut [f64],
+    /// ‖x‖ + s √n.
+    size: f64,
+    evaluations: usize,
+}
+
+impl<P: NonlinearProblem> KrylovSystem for NegativeJacobian<'_, P> {
+    fn apply(&mut self, v: &[f64], out: &mut [f64]) -> Result<(), Inadmissible> {
+        let nv = norm(v);
+        if nv == 0.0 {
+            out.iter_mut().for_each(|o| *o = 0.0);
+            return Ok(());
+        }
+        let h = SQRT_EPS * self.size / nv;
+        for ((p, x), v) in self.x_probe.iter_mut().zip(self.x).zip(v) {
+            *p = x + h * v;
+        }
+        self.evaluations += 1;
+        self.problem
+            .residual(self.x_probe, self.f_probe, Frozen::Keep)?;
+        let inv_h = 1.0 / h;
+        for ((o, fp), fx) in out.iter_mut().zip(self.f_probe.iter()).zip(self.fx) {
+            *o = -(fp - fx) * inv_h;
+        }
+        Ok(())
+    }
+
+    fn precondition(&mut self, r: &[f64], z: &mut [f64]) {
+        self.problem.precondition(r, z);
+    }
+}
+
+impl NewtonKrylov {
+    /// A solver for `n` unknowns.
+    pub fn new(n: usize, params: NewtonParams) -> Self {
+        NewtonKrylov {
+            params,
+            gmres: Gmres::new(n, params.krylov.restart),
+            f: vec![0.0; n],
+            dx: vec![0.0; n],
+            x_trial: vec![0.0; n],
+            f_trial: vec![0.0; n],
+            x_probe: vec![0.0; n],
+            f_probe: vec![0.0; n],
+        }
+    }
+
+    /// Bytes of the workspace (Krylov basis and the six work vectors).
+    pub fn memory_bytes(&self) -> usize {
+        self.gmres.memory_bytes() + 8 * 6 * self.f.len()
+    }
+
+    /// The residual F at the last accepted iterate of the last solve.
+    pub fn residual(&self) -> &[f64] {
+        &self.f
+    }
+
+    /// Solves F(x) = 0 from the starting point `x` (overwritten with the
+    /// last accepted iterate, also when the tolerance is not reached).
+    /// `on_iteration(k, relative residual)` is called at the start and
+    /// after every accepted step.
+    pub fn solve<P: NonlinearProblem>(
+        &mut self,
+        problem: &mut P,
+        x: &mut [f64],
+        on_iteration: &mut dyn FnMut(usize, f64),
+    ) -> Result<NewtonInfo, NewtonError> {
+        let n = problem.len();
+        if self.f.len() != n {
+            *self = NewtonKrylov::new(n, self.params);
+        }
+        let params = self.params;
+        let mut info = NewtonInfo::default();
+        info.residual_evaluations += 1;
+        problem
+            .residual(x, &mut self.f, Frozen::Renew)
+            .map_err(NewtonError::Start)?;
+        let mut fnorm = norm(&self.f);
+        let mut reference = problem.residual_reference();
+        let mut forcing = Forcing::new(params.forcing);
+        let mut history = NonMonotone::new(params.line_search.window);
+        let mut discontinuity_steps = 0;
+        history.push(fnorm);
+        info.residual = relative(fnorm, reference);
+        on_iteration(0, info.residual);
+        for k in 1..=params.max_iterations {
+            let target = params.tolerance * reference;
+            if fnorm <= target {
+                info.converged = true;
+                return Ok(info);
+            }
+            if let Err(e) = problem.prepare_preconditioner(x) {
+                return Err(NewtonError::Preconditioner {
+                    iteration: k,
+                    reason: e.0,
+                    info,
+                });
+            }
+            let eta = forcing.next(fnorm, target);
+            self.dx.iter_mut().for_each(|d| *d = 0.0);
+            let size = norm(x) + problem.typical_size() * (n as f64).sqrt();
+            let mut system = NegativeJacobian {
+                problem: &mut *problem,
+                x: &*x,
+                fx: &self.f,
+                x_probe: &mut self.x_probe,
+                f_probe: &mut self.f_probe,
+                size,
+                evaluations: 0,
+            };
+            let krylov = GmresParams {
+                tolerance: eta,
+                ..params.krylov
+            };
+            let solved = self
+                .gmres
+                .solve(&mut system, &self.f, &mut self.dx, &krylov);
+            info.residual_evaluations += system.evaluations;
+            match solved {
+                Ok(g) => info.krylov_iterations += g.iterations,
+                // a Jacobian product left the admissible states: the
+                // restart cycles before it are the step, if any
+                Err(e) if self.dx.iter().all(|d| *d == 0.0) => {
+                    info.residual = relative(fnorm, reference);
+                    return Err(NewtonError::LineSearch {
+                        iteration: k,
+                        residual: info.residual,
+                        reason: Some(format!("the Krylov solve failed: {e}")),
+                        info,
+                    });
+                }
+                Err(_) => {}
+            }
+            // line search along dx
+            let mut lambda = 1.0;
+            let mut accepted = false;
+            let mut last_reason = None;
+            for backtrack in 0..=params.line_search.max_backtracks {
+                for ((t, x), d) in self.x_trial.iter_mut().zip(x.iter()).zip(&self.dx) {
+                    *t = x + lambda * d;
+                }
+                info.residual_evaluations += 1;
+                let trial = match problem.residual(&self.x_trial, &mut self.f_trial, Frozen::Renew)
+                {
+                    Ok(()) => norm(&self.f_trial),
+                    Err(e) => {
+                        last_reason = Some(e.0);
+                        f64::NAN
+                    }
+                };
+                let discontinuity = backtrack == 0
+                    && trial.is_finite()
+                    && discontinuity_steps < params.line_search.discontinuity_steps
+                    && problem.changes_at_last_renewal() > 0;
+                if discontinuity
+                    || sufficient(trial, history.reference(), lambda, eta, &params.line_search)
+                {
+                    if discontinuity
+                        && !sufficient(trial, history.reference(), 1.0, eta, &params.line_search)
+                    {
+                        discontinuity_steps += 1;
+                        info.discontinuity_steps += 1;
+                        // the residual of a new active set starts a new history
+                        history = NonMonotone::new(params.line_search.window);
+                    }
+                    accepted = true;
+                    fnorm = trial;
+                    break;
+                }
+                if backtrack < params.line_search.max_backtracks {
+                    info.backtracks += 1;
+                    lambda = next_length(lambda, fnorm, trial, eta, &params.line_search);
+                }
+            }
+            if !accepted {
+                // the problem's frozen data now belong to the last trial:
+                // renew them at the point that stays
+                info.residual_evaluations += 1;
+                let _ = problem.residual(x, &mut self.f, Frozen::Renew);
+                info.residual = relative(fnorm, reference);
+                return Err(NewtonError::LineSearch {
+                    iteration: k,
+                    residual: info.residual,
+                    reason: last_reason,
+                    info,
+                });
+            }
+            x.copy_from_slice(&self.x_trial);
+            std::mem::swap(&mut self.f, &mut self.f_trial);
+            history.push(fnorm);
+            reference = problem.residual_reference();
+            info.iterations = k;
+            info.residual = relative(fnorm, reference);
+            on_iteration(k, info.residual);
+        }
+        info.converged = fnorm <= params.tolerance * reference;
+        Ok(info)
+    }
+}
+
+fn relative(norm: f64, reference: f64) -> f64 {
+    if reference > 0.0 {
+        norm / reference
+    } else {
+        norm
+    }
+}

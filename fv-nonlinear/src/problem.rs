@@ -1,0 +1,70 @@
+//! What Newton–Krylov needs of a discretised problem.
+
+/// The residual could not be evaluated at this state (a cell inverted, a
+/// non-finite value): the line search backtracks from it.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("{0}")]
+pub struct Inadmissible(pub String);
+
+/// Whether a residual evaluation may renew the data that the Jacobian
+/// products of a Newton step keep frozen (contact candidate pairs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Frozen {
+    /// A new base point (start, line-search trial): renew them at `x`.
+    Renew,
+    /// A Jacobian product about the base point: keep them.
+    Keep,
+}
+
+/// A nonlinear system F(x) = 0 of `len()` unknowns, with the frozen state
+/// of the step (committed material state, friction history, multipliers)
+/// inside the problem.
+///
+/// `residual` must be a function of `x` alone for a given frozen state: two
+/// calls at the same `x` give the same bits. Nothing is carried from one
+/// call to the next.
+pub trait NonlinearProblem {
+    /// Number of unknowns.
+    fn len(&self) -> usize;
+
+    /// Whether there are no unknowns.
+    fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// F(x) into `f`.
+    fn residual(&mut self, x: &[f64], f: &mut [f64], frozen: Frozen) -> Result<(), Inadmissible>;
+
+    /// The force (or other) scale the residual norm is judged against,
+    /// of the last base point evaluated (`residual` with [`Frozen::Renew`]):
+    /// converged when ‖F‖ ≤ tolerance × this.
+    fn residual_reference(&self) -> f64;
+
+    /// Typical size of an unknown, for the finite-difference step of the
+    /// Jacobian products (`x` itself may be zero).
+    fn typical_size(&self) -> f64;
+
+    /// Sets up the preconditioner about the base point `x` (after its
+    /// residual was evaluated with [`Frozen::Renew`]).
+    fn prepare_preconditioner(&mut self, x: &[f64]) -> Result<(), Inadmissible>;
+
+    /// z = P⁻¹ r, P ≈ −J (the preconditioner approximates the *negative*
+    /// Jacobian, as the segregated operator does: F(x + δ) ≈ F(x) − P δ).
+    fn precondition(&mut self, r: &[f64], z: &mut [f64]);
+
+    /// How many entries of the frozen data (contact faces opening,
+    /// closing, sticking or slipping; candidate pairs) the last
+    /// [`Frozen::Renew`] evaluation changed against the one before it: a
+    /// step that changes them crossed a kink of F, and Newton's linear
+    /// model could not see the new state (0 for a smooth problem).
+    fn changes_at_last_renewal(&self) -> usize {
+        0
+    }
+
+    /// Components of the unknowns that are held fixed (their residual is
+    /// zero by construction); `None` when all are free. Used only to keep
+    /// the Krylov vectors clean.
+    fn fixed(&self) -> Option<&[bool]> {
+        None
+    }
+}

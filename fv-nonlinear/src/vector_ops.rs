@@ -1,0 +1,91 @@
+//! Dense vector kernels of the Krylov solver, parallel over fixed chunks so
+//! that the results are the same to the bit whatever the number of threads
+//! (each chunk's partial sum is formed alone, the partial sums are added in
+//! chunk order).
+use rayon::prelude::*;
+
+/// Entries per chunk.
+const CHUNK: usize = 8192;
+/// Vectors shorter than this are handled on the calling thread.
+const PARALLEL_LEN: usize = 4 * CHUNK;
+
+fn parallel(n: usize) -> bool {
+    n >= PARALLEL_LEN && rayon::current_num_threads() > 1
+}
+
+/// Σ a_i b_i.
+pub fn dot(a: &[f64], b: &[f64]) -> f64 {
+    debug_assert_eq!(a.len(), b.len());
+    let chunk = |(x, y): (&[f64], &[f64])| x.iter().zip(y).map(|(p, q)| p * q).sum::<f64>();
+    if parallel(a.len()) {
+        let parts: Vec<f64> = a
+            .par_chunks(CHUNK)
+            .zip(b.par_chunks(CHUNK))
+            .map(chunk)
+            .collect();
+        parts.iter().sum()
+    } else {
+        a.chunks(CHUNK).zip(b.chunks(CHUNK)).map(chunk).sum()
+    }
+}
+
+/// ‖a‖₂.
+pub fn norm(a: &[f64]) -> f64 {
+    dot(a, a).sqrt()
+}
+
+/// y ← y + α x.
+pub fn axpy(alpha: f64, x: &[f64], y: &mut [f64]) {
+    debug_assert_eq!(x.len(), y.len());
+    let kernel = |(yc, xc): (&mut [f64], &[f64])| {
+        for (yi, xi) in yc.iter_mut().zip(xc) {
+            *yi += alpha * xi;
+        }
+    };
+    if parallel(y.len()) {
+        y.par_chunks_mut(CHUNK)
+            .zip(x.par_chunks(CHUNK))
+            .for_each(kernel);
+    } else {
+        y.chunks_mut(CHUNK).zip(x.chunks(CHUNK)).for_each(kernel);
+    }
+}
+
+/// y ← α y.
+pub fn scale(alpha: f64, y: &mut [f64]) {
+    let kernel = |yc: &mut [f64]| yc.iter_mut().for_each(|v| *v *= alpha);
+    if parallel(y.len()) {
+        y.par_chunks_mut(CHUNK).for_each(kernel);
+    } else {
+        kernel(y);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn kernels_match_the_plain_loops() {
+        let n = 5 * PARALLEL_LEN + 17;
+        let a: Vec<f64> = (0..n)
+            .map(|i| ((i * 7919) % 1000) as f64 * 1e-3 - 0.5)
+            .collect();
+        let b: Vec<f64> = (0..n).map(|i| ((i * 104729) % 997) as f64 * 1e-3).collect();
+        let plain: f64 = a
+            .chunks(CHUNK)
+            .zip(b.chunks(CHUNK))
+            .map(|(x, y)| x.iter().zip(y).map(|(p, q)| p * q).sum::<f64>())
+            .sum();
+        assert_eq!(dot(&a, &b), plain);
+        let mut y = b.clone();
+        axpy(2.0, &a, &mut y);
+        assert!(y
+            .iter()
+            .zip(&a)
+            .zip(&b)
+            .all(|((y, a), b)| *y == b + 2.0 * a));
+        scale(0.5, &mut y);
+        assert!((norm(&[3.0, 4.0]) - 5.0).abs() < 1e-15);
+    }
+}

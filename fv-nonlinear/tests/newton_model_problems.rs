@@ -1,0 +1,206 @@
+//! Newton–Krylov on model problems with known solutions: the Bratu
+//! problem (smooth, strongly nonlinear) and a chain of springs pressed onto
+//! an obstacle by a penalty (a contact active set, nonsmooth), both
+//! preconditioned by the tridiagonal Laplacian as the finite-volume solver
+//! is by its segregated operator.
+use fv_nonlinear::{Frozen, Inadmissible, NewtonKrylov, NewtonParams, NonlinearProblem};
+
+/// Solves the tridiagonal system (−1, d_i, −1) z = r (Thomas algorithm).
+fn tridiagonal(diag: &[f64], r: &[f64], z: &mut [f64], work: &mut [f64]) {
+    let n = r.len();
+    let mut c_prev = 0.0;
+    let mut z_prev = 0.0;
+    for i in 0..n {
+        let m = diag[i] + c_prev; // diag − (−1)·c_prev with c_i = −1/m
+        let c = -1.0 / m;
+        z[i] = (r[i] + z_prev) / m;
+        work[i] = c;
+        c_prev = c;
+        z_prev = z[i];
+    }
+    for i in (0..n.saturating_sub(1)).rev() {
+        z[i] -= work[i] * z[i + 1];
+    }
+}
+
+/// −u'' − λ eᵘ = 0 on (0, 1), u(0) = u(1) = 0, second-order differences,
+/// scaled by h² (F_i = u_{i−1} − 2u_i + u_{i+1} + h² λ e^{u_i}).
+struct Bratu {
+    n: usize,
+    lambda: f64,
+    evaluations: usize,
+    work: Vec<f64>,
+    diag: Vec<f64>,
+}
+
+impl NonlinearProblem for Bratu {
+    fn len(&self) -> usize {
+        self.n
+    }
+    fn residual(&mut self, x: &[f64], f: &mut [f64], _: Frozen) -> Result<(), Inadmissible> {
+        self.evaluations += 1;
+        let h = 1.0 / (self.n + 1) as f64;
+        for i in 0..self.n {
+            let left = if i > 0 { x[i - 1] } else { 0.0 };
+            let right = if i + 1 < self.n { x[i + 1] } else { 0.0 };
+            f[i] = left - 2.0 * x[i] + right + h * h * self.lambda * x[i].exp();
+        }
+        Ok(())
+    }
+    fn residual_reference(&self) -> f64 {
+        let h = 1.0 / (self.n + 1) as f64;
+        h * h * self.lambda * (self.n as f64).sqrt()
+    }
+    fn typical_size(&self) -> f64 {
+        1.0
+    }
+    fn prepare_preconditioner(&mut self, _: &[f64]) -> Result<(), Inadmissible> {
+        self.diag.clear();
+        self.diag.resize(self.n, 2.0);
+        Ok(())
+    }
+    fn precondition(&mut self, r: &[f64], z: &mut [f64]) {
+        tridiagonal(&self.diag, r, z, &mut self.work);
+    }
+}
+
+#[test]
+fn bratu_converges_quadratically_to_the_lower_branch() {
+    let n = 200;
+    let mut p = Bratu {
+        n,
+        lambda: 3.0,
+        evaluations: 0,
+        work: vec![0.0; n],
+        diag: Vec::new(),
+    };
+    let mut x = vec![0.0; n];
+    let params = NewtonParams {
+        tolerance: 1e-10,
+        ..Default::default()
+    };
+    let mut residuals = Vec::new();
+    let info = NewtonKrylov::new(n, params)
+        .solve(&mut p, &mut x, &mut |_, r| residuals.push(r))
+        .unwrap();
+    assert!(info.converged, "{info:?}");
+    assert!(info.iterations <= 6, "{info:?} {residuals:?}");
+    assert_eq!(info.residual_evaluations, p.evaluations);
+    // lower branch of λ = 3: u(1/2) = 0.2 ... the exact solution
+    // u = −2 ln(cosh((x − ½) θ/2)/cosh(θ/4)) with θ = √(2λ) cosh(θ/4)
+    let mut theta: f64 = 1.0;
+    for _ in 0..200 {
+        theta = (2.0 * 3.0f64).sqrt() * (theta / 4.0).cosh();
+    }
+    let mid = 2.0 * (theta / 4.0).cosh().ln();
+    let got = x[n / 2 - 1].max(x[n / 2]);
+    assert!((got - mid).abs() < 1e-4 * mid, "u(1/2) {got} against {mid}");
+}
+
+/// A chain of n unit springs, ends held at 0, each node pulled down by
+/// `load`, resting by a penalty ε on obstacles at heights `obstacle[i]`:
+/// F_i = u_{i−1} − 2u_i + u_{i+1} − load + ε max(obstacle_i − u_i, 0).
+struct SpringsOnObstacle {
+    n: usize,
+    load: f64,
+    penalty: f64,
+    obstacle: Vec<f64>,
+    /// Active set frozen at the last renewal (as contact pairs are).
+    active: Vec<bool>,
+    changes: usize,
+    work: Vec<f64>,
+    diag: Vec<f64>,
+}
+
+impl NonlinearProblem for SpringsOnObstacle {
+    fn len(&self) -> usize {
+        self.n
+    }
+    fn residual(&mut self, x: &[f64], f: &mut [f64], frozen: Frozen) -> Result<(), Inadmissible> {
+        for i in 0..self.n {
+            let left = if i > 0 { x[i - 1] } else { 0.0 };
+            let right = if i + 1 < self.n { x[i + 1] } else { 0.0 };
+            let pen = self.obstacle[i] - x[i];
+            if frozen == Frozen::Renew {
+                if i == 0 {
+                    self.changes = 0;
+                }
+                self.changes += usize::from(self.active[i] != (pen > 0.0));
+                self.active[i] = pen > 0.0;
+            }
+            let contact = if self.active[i] {
+                self.penalty * pen
+            } else {
+                0.0
+            };
+            f[i] = left - 2.0 * x[i] + right - self.load + contact;
+        }
+        Ok(())
+    }
+    fn residual_reference(&self) -> f64 {
+        self.load * (self.n as f64).sqrt()
+    }
+    fn typical_size(&self) -> f64 {
+        1.0
+    }
+    fn changes_at_last_renewal(&self) -> usize {
+        self.changes
+    }
+    fn prepare_preconditioner(&mut self, _: &[f64]) -> Result<(), Inadmissible> {
+        self.diag.clear();
+        self.diag.extend(
+            self.active
+                .iter()
+                .map(|&a| 2.0 + if a { self.penalty } else { 0.0 }),
+        );
+        Ok(())
+    }
+    fn precondition(&mut self, r: &[f64], z: &mut [f64]) {
+        tridiagonal(&self.diag, r, z, &mut self.work);
+    }
+}
+
+#[test]
+fn penalty_contact_active_set_settles_in_a_few_newton_iterations() {
+    let n = 101;
+    let obstacle: Vec<f64> = (0..n)
+        .map(|i| {
+            let s = (i as f64 - 50.0) / 50.0;
+            -20.0 + 10.0 * s * s
+        })
+        .collect();
+    let mut p = SpringsOnObstacle {
+        n,
+        load: 0.05,
+        penalty: 1e4,
+        obstacle: obstacle.clone(),
+        active: vec![false; n],
+        changes: 0,
+        work: vec![0.0; n],
+        diag: Vec::new(),
+    };
+    let mut x = vec![0.0; n];
+    let params = NewtonParams {
+        tolerance: 1e-8,
+        ..Default::default()
+    };
+    let info = NewtonKrylov::new(n, params)
+        .solve(&mut p, &mut x, &mut |_, _| {})
+        .unwrap();
+    assert!(info.converged, "{info:?}");
+    assert!(info.iterations <= 25, "{info:?}");
+    // the free chain sags to a parabola of depth load n²/8 ≈ 64 > 20: the
+    // middle rests on the obstacle, penetrating by about load/penalty
+    let mid = n / 2;
+    assert!(
+        (x[mid] - obstacle[mid]).abs() < 1e-3,
+        "{} vs {}",
+        x[mid],
+        obstacle[mid]
+    );
+    // the residual of the true (renewed) active set is converged
+    let mut f = vec![0.0; n];
+    p.residual(&x, &mut f, Frozen::Renew).unwrap();
+    let r = f.iter().map(|v| v * v).sum::<f64>().sqrt();
+    assert!(r <= 1e-8 * p.residual_reference() * 1.01, "{r}");
+}

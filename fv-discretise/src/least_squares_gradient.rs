@@ -69,6 +69,12 @@ impl LeastSquaresGradient {
         }
     }
 
+    /// The vector c of every face's owner (zero on passive faces): the
+    /// gradient of cell P gains c ⊗ (φ_f − φ_P) from its boundary face f.
+    pub fn owner_coefficients(&self) -> &[Vector] {
+        &self.owner_coeff
+    }
+
     /// Gradient of a vector field: `out[P] = Σ c ⊗ (φ_k − φ_P)`, with
     /// `(∇φ)_ij = ∂φ_j/∂x_i`. `boundary` holds the boundary-face values
     /// (index `face − n_internal_faces`).

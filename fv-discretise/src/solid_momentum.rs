@@ -39,6 +39,10 @@
 //!
 //! With inertia (3.11) the cell balance gains −m_P ü_P (backward Euler, the
 //! mass m_P = ρ_P Ω_P conserved) and the matrix diagonal m_P/Δt².
+mod state_function;
+
+pub use state_function::KinematicFaces;
+
 use crate::stress_law::current_area_vector;
 use crate::{LeastSquaresGradient, PatchCondition, StressLaw};
 use fv_materials::{updated_lagrangian_stress, MaterialState};
@@ -243,6 +247,13 @@ pub struct SolidMomentum {
     /// α_RC of this body instead of [`MomentumParams::rhie_chow`] (set by
     /// the solver for cell shapes the thesis's 0.1 does not hold).
     pub rhie_chow_override: Option<f64>,
+    /// The boundary faces whose value follows from their owner's value and
+    /// gradient, eliminated from the cell gradient when the balance is
+    /// evaluated as a function of the state ([`Self::prepare_state_function`]).
+    kinematic: KinematicFaces,
+    /// Σ_f |force through f| of every cell at the last residual evaluation
+    /// (workspace of [`Self::compute_residual_with_face_rows`]).
+    force_scale: Vec<f64>,
 }
 
 /// Wedge face f, rotation `r` from the mid-plane onto its plane, unit
@@ -336,6 +347,8 @@ impl SolidMomentum {
             rc_increment: Vec::new(),
             rc_carried: Vec::new(),
             rhie_chow_override: None,
+            kinematic: KinematicFaces::default(),
+            force_scale: Vec::new(),
         };
         s.update_geometry(mesh, geom);
         s
@@ -903,18 +916,31 @@ impl SolidMomentum {
     /// admissible. Returns the first such cell and its det f, if any (the
     /// caller rejects a converged state that still has one).
     pub fn update_gradient_and_stress(&mut self, mesh: &PolyMesh) -> Option<(usize, f64)> {
+        {
+            let (u, u_b) = if self.law.is_updated_lagrangian() {
+                (&self.du, &self.du_b)
+            } else {
+                (&self.u, &self.u_b)
+            };
+            self.gradient
+                .vector_gradient(mesh, u, u_b, &mut self.grad_u);
+        }
+        self.update_stress()
+    }
+
+    /// Cell stress (and σ̂ under the updated Lagrangian form) from the
+    /// current cell gradient. A cell whose increment is not invertible
+    /// keeps its previous stress and trial state; the first such cell and
+    /// its det f are returned.
+    pub fn update_stress(&mut self) -> Option<(usize, f64)> {
         let mut inverted = None;
         match &mut self.law {
             StressLaw::Small(m) => {
-                self.gradient
-                    .vector_gradient(mesh, &self.u, &self.u_b, &mut self.grad_u);
                 for (s, g) in self.sigma.iter_mut().zip(&self.grad_u) {
                     *s = m.stress(g);
                 }
             }
             StressLaw::UpdatedLagrangian { law, state } => {
-                self.gradient
-                    .vector_gradient(mesh, &self.du, &self.du_b, &mut self.grad_u);
                 for (i, ((g, sig), h)) in self
                     .grad_u
                     .iter()
@@ -1014,6 +1040,40 @@ impl SolidMomentum {
         geom: &MeshGeometry,
         params: &MomentumParams,
     ) {
+        self.residual_and_face_balance(mesh, geom, params, None);
+    }
+
+    /// [`Self::compute_residual`] with the faces of traction-type
+    /// conditions (traction, pressure, contact) as unknowns of their own:
+    /// the cells take the force of the face's own stress, n·σ̂_b|Γ| (plus
+    /// the carried offset), and `face_rows[b]` receives the balance of
+    /// face b, the applied force minus that one (eqs. 3.21–3.23 as an
+    /// equation rather than a fixed-point step; zero at the solution, where
+    /// both forms agree). Other entries of `face_rows` are left alone.
+    /// Returns Σ_P (Σ_f |force through f|)² over the cells, the square of
+    /// the force scale the residual is judged against.
+    pub fn compute_residual_with_face_rows(
+        &mut self,
+        mesh: &PolyMesh,
+        geom: &MeshGeometry,
+        params: &MomentumParams,
+        face_rows: &mut [Vector],
+    ) -> f64 {
+        self.force_scale.clear();
+        self.force_scale.resize(mesh.n_cells, 0.0);
+        self.residual_and_face_balance(mesh, geom, params, Some(face_rows));
+        self.force_scale.iter().map(|s| s * s).sum()
+    }
+
+    fn residual_and_face_balance(
+        &mut self,
+        mesh: &PolyMesh,
+        geom: &MeshGeometry,
+        params: &MomentumParams,
+        mut face_rows: Option<&mut [Vector]>,
+    ) {
+        let scale_forces = face_rows.is_some();
+        let mut force_scale = std::mem::take(&mut self.force_scale);
         let ni = mesh.n_internal_faces();
         let ul = self.law.is_updated_lagrangian();
         if self.body_force.len() == self.residual.len() {
@@ -1070,6 +1130,11 @@ impl SolidMomentum {
             }
             residual[o] += force;
             residual[nb] -= force;
+            if scale_forces {
+                let m = force.norm();
+                force_scale[o] += m;
+                force_scale[nb] += m;
+            }
         }
         for (p, cond) in mesh.patches.iter().zip(&self.conditions) {
             for f in p.faces() {
@@ -1085,19 +1150,38 @@ impl SolidMomentum {
                         geom.face_mag[f]
                     }
                 };
+                // a traction-type face as an unknown: the cell takes the
+                // force of the face's own stress, the face row the balance
+                let mut balance = |applied: Vector, g: &Tensor| match face_rows.as_deref_mut() {
+                    Some(rows) => {
+                        let internal = (self.face_traction(o, g, &n).0 + self.offset_at(b, g))
+                            * geom.face_mag[f];
+                        rows[b] = applied - internal;
+                        internal
+                    }
+                    None => applied,
+                };
                 let force = match cond {
                     PatchCondition::Displacement(_) => self.boundary_sigma_hat(f, b, o, &n) * area,
                     PatchCondition::Traction(t) => {
                         let g = self.boundary_gradient(f, b, o, &n);
-                        t[f - p.start]
-                            * (self.loaded_area(b, &g, &n).norm()
-                                * geom.face_mag[f]
-                                * self.law.thickness_stretch(o))
+                        balance(
+                            t[f - p.start]
+                                * (self.loaded_area(b, &g, &n).norm()
+                                    * geom.face_mag[f]
+                                    * self.law.thickness_stretch(o)),
+                            &g,
+                        )
                     }
                     PatchCondition::Pressure(pr) => {
                         let g = self.boundary_gradient(f, b, o, &n);
-                        -self.loaded_area(b, &g, &n)
-                            * (geom.face_mag[f] * pr[f - p.start] * self.law.thickness_stretch(o))
+                        balance(
+                            -self.loaded_area(b, &g, &n)
+                                * (geom.face_mag[f]
+                                    * pr[f - p.start]
+                                    * self.law.thickness_stretch(o)),
+                            &g,
+                        )
                     }
                     PatchCondition::LinearisedContact(lc) => {
                         let i = f - p.start;
@@ -1105,7 +1189,8 @@ impl SolidMomentum {
                             Some(r) => r * geom.face_mag[f],
                             None => current_mag(),
                         };
-                        lc.traction_at(i, &self.u_b[b]) * mag
+                        let g = self.boundary_gradient(f, b, o, &n);
+                        balance(lc.traction_at(i, &self.u_b[b]) * mag, &g)
                     }
                     PatchCondition::Symmetry | PatchCondition::NormalDisplacement(_) => {
                         let s = self.boundary_sigma_hat(f, b, o, &n);
@@ -1119,11 +1204,15 @@ impl SolidMomentum {
                 };
                 face_force[b] = force;
                 residual[o] += force;
+                if scale_forces {
+                    force_scale[o] += force.norm();
+                }
             }
         }
         self.residual = residual;
         self.face_force = face_force;
         self.rc_increment = rc_increment;
+        self.force_scale = force_scale;
     }
 
     /// Boundary (Cauchy) stress at every face of patch `p` (for output).

@@ -247,8 +247,8 @@ mod tests {
 
     impl KrylovSystem for Dense {
         fn apply(&mut self, v: &[f64], out: &mut [f64]) -> Result<(), Inadmissible> {
-            for i in 0..self.n {
-                out[i] = (0..self.n).map(|j| self.a[i * self.n + j] * v[j]).sum();
+            for (o, row) in out.iter_mut().zip(self.a.chunks_exact(self.n)) {
+                *o = row.iter().zip(v).map(|(a, v)| a * v).sum();
             }
             Ok(())
         }

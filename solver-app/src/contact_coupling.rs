@@ -21,6 +21,8 @@ use contact_force::{
 use fv_discretise::{LinearisedContact, PatchCondition};
 use fv_mesh::{CellToPoint, Surface, Vector};
 
+mod state_evaluation;
+
 /// Fraction of a face's previous linearisation contact fraction kept when
 /// the face opens against a rigid body (see [`ContactSide::beta`]):
 /// without it the face overshoots, separates, and closes again forever.
@@ -202,6 +204,10 @@ pub struct ContactSide {
     /// current attempt at an increment (restored when it is redone with a
     /// smaller step).
     saved: (Vec<Vector>, Vec<f64>, Vec<Vector>),
+    /// Contact state of every face (open, pressed, sticking, slipping) at
+    /// the last renewal of Newton's frozen data
+    /// ([`ContactSet::evaluate_state`]).
+    state_signature: Vec<u8>,
 }
 
 /// GGI-weighted average over the opposite faces of `value(opposite face)`
@@ -687,6 +693,16 @@ impl ContactInterface {
         self.law.normal_penalty
     }
 
+    /// The tangential (stick) penalty ε_t in use (eq. 4.4b) when the pair
+    /// has friction, else 0.
+    pub fn tangential_penalty(&self) -> f64 {
+        if self.law.friction > 0.0 {
+            self.law.tangential_penalty
+        } else {
+            0.0
+        }
+    }
+
     /// The opposite cells' displacements, GGI-averaged onto each side's
     /// faces (u_Ph* of eq. 4.69), as the reference their motion is measured
     /// from until the next contact evaluation.
@@ -882,6 +898,7 @@ impl ContactSet {
                     opposite_now: vec![Vector::zeros(); surface.n_faces()],
                     beta: vec![0.0; surface.n_faces()],
                     saved: (Vec::new(), Vec::new(), Vec::new()),
+                    state_signature: Vec::new(),
                     shared: false,
                     surface,
                 })

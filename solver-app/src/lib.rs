@@ -19,6 +19,8 @@ pub mod field_output;
 pub mod initial_overlap;
 pub mod mesh_loading;
 pub mod model;
+pub mod newton;
+pub mod nonlinear_solver;
 pub mod output;
 pub mod predictor;
 pub mod profile;

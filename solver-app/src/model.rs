@@ -228,7 +228,7 @@ impl Body {
 
     /// Sets `SolidMomentum::moved_area` of every traction and pressure
     /// face from the points moved by the current increment.
-    fn measure_loaded_faces(&mut self) {
+    pub(crate) fn measure_loaded_faces(&mut self) {
         let Some(op) = &self.mesh_motion else {
             return;
         };

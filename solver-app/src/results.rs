@@ -332,6 +332,12 @@ pub struct Summary {
     pub outer_iterations: usize,
     /// Total linear-solver iterations.
     pub linear_iterations: usize,
+    /// Total residual evaluations (Newton–Krylov: base points,
+    /// line-search trials and Jacobian products; the segregated method
+    /// evaluates one per outer iteration).
+    pub residual_evaluations: usize,
+    /// The nonlinear method (`[solver] nonlinear`).
+    pub nonlinear: &'static str,
     /// Wall-clock seconds.
     pub wall_seconds: f64,
     /// Cells of all bodies.
@@ -368,6 +374,8 @@ pub fn write_summary(
         "increments": s.increments,
         "outer_iterations": s.outer_iterations,
         "linear_iterations": s.linear_iterations,
+        "residual_evaluations": s.residual_evaluations,
+        "nonlinear": s.nonlinear,
         "wall_seconds": s.wall_seconds,
         "cells": s.cells,
         "patches": patches,

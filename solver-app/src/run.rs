@@ -8,9 +8,11 @@ use crate::contact_coupling::ContactSet;
 use crate::field_output::FieldOutput;
 use crate::mesh_loading::load_mesh;
 use crate::model::{build_bodies, Body};
+use crate::nonlinear_solver::{self, NonlinearSolver};
 use crate::predictor::PathChange;
 use crate::results::{history_columns, history_row, write_summary, History, RunLog, Summary};
 use crate::segregated::{IncrementInfo, SegregatedSolver, SolveError};
+use fv_nonlinear::NonlinearMethod;
 
 /// Largest number of times a failed increment is halved and redone.
 const MAX_CUTBACKS: usize = 4;
@@ -112,8 +114,7 @@ pub fn set_up(case: &Case) -> Result<Vec<Body>, InputError> {
 fn accept_increment(
     bodies: &mut [Body],
     contacts: &mut ContactSet,
-    solver: &mut SegregatedSolver,
-    linear: &crate::case::LinearSettings,
+    solver: &mut dyn NonlinearSolver,
     meshes_move: bool,
 ) -> Result<(), SolveError> {
     let start = std::time::Instant::now();
@@ -123,9 +124,11 @@ fn accept_increment(
     if meshes_move {
         contacts.end_increment(bodies);
     }
-    solver.times.lap(crate::profile::Phase::MeshMotion, start);
+    solver
+        .times_mut()
+        .lap(crate::profile::Phase::MeshMotion, start);
     if meshes_move {
-        solver.assemble_and_factorise(bodies, linear)?;
+        solver.prepare(bodies)?;
     }
     Ok(())
 }
@@ -151,8 +154,8 @@ fn run_case_noting(
 ) -> Result<RunOutcome, RunError> {
     let start = Instant::now();
     let (mut bodies, mut contacts) = set_up_with_contacts(case)?;
-    contacts.prepare_conditions(&mut bodies);
-    let mut solver = SegregatedSolver::new(&bodies, &case.solver);
+    let method = case.solver.nonlinear;
+    nonlinear_solver::prepare_contact_conditions(method, &contacts, &mut bodies);
     let mut failure: Option<String> = None;
     // the temporal diagonal of the first assembly needs the first time step
     let first_dt = case.time.dt();
@@ -162,8 +165,17 @@ fn run_case_noting(
     {
         inertia.set_time_step(first_dt);
     }
-    if let Err(e) = solver.assemble_and_factorise(&bodies, &case.solver.linear) {
-        match unheld_body(case, &e, note.is_none()) {
+    // every body held (Newton–Krylov: contact holds whatever it touches,
+    // whatever the coupling)
+    let held = match method {
+        NonlinearMethod::Segregated => Ok(()),
+        NonlinearMethod::NewtonKrylov => SegregatedSolver::new(&bodies, &case.solver)
+            .assemble_and_factorise(&bodies, &case.solver.linear),
+    };
+    let mut solver = nonlinear_solver::build(&bodies, &case.solver);
+    if let Err(e) = held.and_then(|_| solver.prepare(&bodies)) {
+        let may_switch = note.is_none() && method == NonlinearMethod::Segregated;
+        match unheld_body(case, &e, may_switch) {
             Some(Ok((note, switched))) => return run_case_noting(&switched, opts, Some(&note)),
             Some(Err(input)) => return Err(RunError::Input(input)),
             None => failure = Some(e.to_string()),
@@ -208,6 +220,7 @@ fn run_case_noting(
         title: case.title.clone(),
         converged: true,
         cells,
+        nonlinear: method.name(),
         ..Default::default()
     };
     log.info(&format!(
@@ -256,7 +269,9 @@ fn run_case_noting(
     let solve_start = Instant::now();
     let mut cell_iterations = 0.0;
     let mut switched_coupling = false;
-    let may_switch = case.solver.coupling_fallback == crate::case::CouplingFallback::Implicit;
+    let may_switch = case.solver.coupling_fallback == crate::case::CouplingFallback::Implicit
+        && method == NonlinearMethod::Segregated;
+    let mut evaluations = 0usize;
     for k in 1..=case.time.steps {
         if failure.is_some() {
             break;
@@ -299,7 +314,7 @@ fn run_case_noting(
                 has_inertia = true;
             }
             if has_inertia && dt_k != dt_prev {
-                if let Err(e) = solver.assemble_and_factorise(&bodies, &case.solver.linear) {
+                if let Err(e) = solver.prepare(&bodies) {
                     break Err(e);
                 }
             }
@@ -313,7 +328,7 @@ fn run_case_noting(
             path.subtract_from(&path_end);
             solver.set_step(&path, t0, t1);
             solver.set_divergence_retries(diverged);
-            let attempt = solver.solve_increment(&mut bodies, &mut contacts, |outer, res| {
+            let attempt = solver.solve_increment(&mut bodies, &mut contacts, &mut |outer, res| {
                 if trace_outer {
                     eprintln!("  outer {outer}: residual {res:.3e}");
                 }
@@ -339,6 +354,7 @@ fn run_case_noting(
                     Ok(info) => {
                         total.outer_iterations += info.outer_iterations;
                         total.linear_iterations += info.linear_iterations;
+                        total.residual_evaluations += info.residual_evaluations;
                         format!(
                             "no convergence in {} outer iterations",
                             info.outer_iterations
@@ -397,6 +413,7 @@ fn run_case_noting(
                     Ok(info) => {
                         total.outer_iterations += info.outer_iterations;
                         total.linear_iterations += info.linear_iterations;
+                        total.residual_evaluations += info.residual_evaluations;
                     }
                     Err(_) => diverged += 1,
                 }
@@ -415,6 +432,7 @@ fn run_case_noting(
                 Ok(info) => {
                     total.outer_iterations += info.outer_iterations;
                     total.linear_iterations += info.linear_iterations;
+                    total.residual_evaluations += info.residual_evaluations;
                     total.residual = info.residual;
                     total.required = info.required;
                     total.contact_unsettled = info.contact_unsettled;
@@ -439,8 +457,7 @@ fn run_case_noting(
                     if let Err(e) = accept_increment(
                         &mut bodies,
                         &mut contacts,
-                        &mut solver,
-                        &case.solver.linear,
+                        solver.as_mut(),
                         reassemble_every_increment,
                     ) {
                         break Err(e);
@@ -467,6 +484,8 @@ fn run_case_noting(
                 summary.outer_iterations += info.outer_iterations;
                 summary.linear_iterations += info.linear_iterations;
                 cell_iterations += (info.outer_iterations * solver.n_unknowns()) as f64;
+                evaluations += info.residual_evaluations;
+                summary.residual_evaluations += info.residual_evaluations;
                 let line = format!(
                     "increment {k}/{} t = {t:.6e}: {} outer iterations, residual {:.3e}, {} linear iterations{}",
                     case.time.steps,
@@ -510,8 +529,7 @@ fn run_case_noting(
                     if let Err(e) = accept_increment(
                         &mut bodies,
                         &mut contacts,
-                        &mut solver,
-                        &case.solver.linear,
+                        solver.as_mut(),
                         reassemble_every_increment,
                     ) {
                         failure = Some(format!("after increment {k}: {e}"));
@@ -615,7 +633,15 @@ fn run_case_noting(
             summary.outer_iterations as f64 / summary.increments.max(1) as f64,
             summary.linear_iterations
         ));
-        let mut times = solver.times;
+        if method == NonlinearMethod::NewtonKrylov && evaluations > 0 {
+            log.info(&format!(
+                "Newton–Krylov: {:.3} µs per cell per residual evaluation; {:.1} residual evaluations and {:.1} Krylov iterations per Newton iteration",
+                solve_seconds * 1e6 / (evaluations * solver.n_unknowns()) as f64,
+                evaluations as f64 / summary.outer_iterations.max(1) as f64,
+                summary.linear_iterations as f64 / summary.outer_iterations.max(1) as f64
+            ));
+        }
+        let mut times = solver.times();
         times.merge(&contacts.times);
         log.info(&times.report(solve_seconds));
         summary.profile = Some(times);

@@ -104,6 +104,10 @@ pub struct IncrementInfo {
     pub converged: bool,
     /// Linear-solver iterations, summed over components and outer iterations.
     pub linear_iterations: usize,
+    /// Residual evaluations (Newton–Krylov: base points, line-search
+    /// trials and Jacobian products; the segregated method evaluates one
+    /// per outer iteration).
+    pub residual_evaluations: usize,
     /// The residual the last outer iteration had to reach: the tolerance,
     /// tightened by a damped explicit contact relaxation
     /// ([`ContactSet::explicit_relaxation_fraction`]).
@@ -154,6 +158,10 @@ pub enum SolveError {
     /// The material could not be evaluated (an increment inverts a cell).
     #[error("{0}")]
     Material(String),
+    /// Newton's method stopped without a usable iterate (no step length
+    /// decreased the residual, the preconditioner failed).
+    #[error("{0}")]
+    Nonlinear(String),
     /// The matrix is singular: a body cannot carry load in some direction.
     #[error("body '{body}'{part} is not held in the {axis} direction: give it a displacement, symmetry or normal-displacement condition (no rigid-body motion can be solved statically)")]
     Unconstrained {
@@ -260,7 +268,7 @@ fn gather_residual(bodies: &[Body], c: usize, out: &mut [f64]) {
 
 fn make_solver(s: &LinearSettings, n: usize) -> Box<dyn LinearSolver + Send> {
     match s.method {
-        LinearMethod::PcgIc => Box::new(fv_discretise::PcgIc0::with_params(
+        LinearMethod::PcgIc | LinearMethod::Gmres => Box::new(fv_discretise::PcgIc0::with_params(
             n,
             fv_discretise::PcgParams {
                 tolerance: s.tolerance,
@@ -309,7 +317,7 @@ const HARMONIC_SWEEP_TOLERANCE: f64 = 1e-3;
 /// face normals this used to be, its cells lost the circumferential part
 /// of their radial motion). Such a direction must be shared by every
 /// deformable body.
-fn unsolved_directions(bodies: &[Body]) -> [bool; 3] {
+pub(crate) fn unsolved_directions(bodies: &[Body]) -> [bool; 3] {
     // (any face seen, axis shared by all faces) for empty and for wedge faces
     let mut kinds = [(false, [true; 3]); 2];
     for b in bodies.iter().filter(|b| !b.rigid) {
@@ -436,6 +444,11 @@ impl SegregatedSolver {
             p.set_step(path);
         }
         self.step_times = (t0, t1);
+    }
+
+    /// The linear-solver settings of the run.
+    pub fn linear_settings(&self) -> LinearSettings {
+        self.linear
     }
 
     /// Number of unknowns per component.
@@ -1263,6 +1276,7 @@ impl SegregatedSolver {
                     })?;
             info.linear_iterations += linear;
             info.outer_iterations = outer;
+            info.residual_evaluations = outer;
             info.residual = residual;
             on_iteration(outer, residual);
             let cycling = (residual / before_last - 1.0).abs() < CYCLE_MATCH

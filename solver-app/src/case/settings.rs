@@ -1,6 +1,7 @@
 //! `[analysis]`, `[time]`, `[solver]` and `[output]`.
 
 use fv_discretise::RhieChowHistory;
+use fv_nonlinear::NonlinearMethod;
 use std::path::PathBuf;
 
 use super::reader::{fmt_num, Res, Table};
@@ -150,6 +151,12 @@ pub enum LinearMethod {
     Direct,
     /// `"bicgstab-ilu"`: BiCGStab with ILU(0), for nonsymmetric (implicitly coupled) systems.
     BicgstabIlu,
+    /// `"gmres"`: restarted GMRES on Newton's linear systems, preconditioned
+    /// by IC(0) of the segregated operator (`nonlinear = "newton-krylov"`
+    /// only, whose default it is; there `"pcg-ic"`, `"bicgstab-ilu"` and
+    /// `"direct"` select it too, the segregated methods' names meaning the
+    /// same preconditioned Krylov solve).
+    Gmres,
 }
 
 /// Default relative tolerance of the linear solves under Anderson
@@ -168,8 +175,11 @@ pub struct LinearSettings {
     /// Relative residual reduction per outer iteration, in (0, 1) (default
     /// 0.1; [`ANDERSON_LINEAR_TOLERANCE`] under Anderson acceleration).
     pub tolerance: f64,
-    /// Iteration cap (>= 1, default 500).
+    /// Iteration cap (>= 1, default 500; Newton–Krylov: Krylov iterations
+    /// per Newton step, default 200).
     pub max_iterations: usize,
+    /// Newton–Krylov: GMRES restart length (>= 1, default 30).
+    pub restart: usize,
 }
 
 impl LinearSettings {
@@ -192,16 +202,44 @@ impl Default for LinearSettings {
             method: LinearMethod::PcgIc,
             tolerance: 0.1,
             max_iterations: 500,
+            restart: 30,
         }
     }
 }
 
-/// `[solver]`: the segregated outer loop.
+/// Newton–Krylov's default largest forcing term: each Newton step's
+/// linear solve reduces the residual at least this much (Eisenstat–Walker
+/// tightens it as Newton converges).
+pub const NEWTON_FORCING_MAX: f64 = 0.1;
+
+/// Newton–Krylov's default Newton iterations per increment.
+pub const NEWTON_MAX_ITERATIONS: usize = 50;
+
+impl LinearSettings {
+    /// The defaults of Newton–Krylov: GMRES(30), forcing terms up to
+    /// [`NEWTON_FORCING_MAX`], 200 Krylov iterations per Newton step.
+    pub fn for_newton() -> Self {
+        Self {
+            method: LinearMethod::Gmres,
+            tolerance: NEWTON_FORCING_MAX,
+            max_iterations: 200,
+            restart: 30,
+        }
+    }
+}
+
+/// `[solver]`: the nonlinear method and its settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SolverSettings {
-    /// Relative residual of the outer loop, in (0, 1) (default 1e-6).
+    /// How an increment is solved (default segregated).
+    pub nonlinear: NonlinearMethod,
+    /// In (0, 1), default 1e-6. Segregated: the relative correction of the
+    /// outer loop. Newton–Krylov: the residual norm relative to the force
+    /// scale ‖(Σ_f |force through f|)_P‖ over the cells (the forces each
+    /// cell balances).
     pub tolerance: f64,
-    /// Outer iterations per increment (>= 1, default 20000).
+    /// Nonlinear iterations per increment (>= 1; default 20000 outer
+    /// iterations of the segregated method, 50 Newton iterations).
     pub max_outer: usize,
     /// Displacement under-relaxation, in (0, 1] (default 1).
     pub relaxation: f64,
@@ -233,6 +271,7 @@ pub struct SolverSettings {
 impl Default for SolverSettings {
     fn default() -> Self {
         Self {
+            nonlinear: NonlinearMethod::Segregated,
             tolerance: 1e-6,
             max_outer: 20000,
             relaxation: 1.0,
@@ -417,6 +456,7 @@ impl SolverSettings {
 
 pub(crate) fn solver(t: &Table<'_>, defaults: &SolverSettings) -> Res<SolverSettings> {
     t.deny_unknown(&[
+        "nonlinear",
         "tolerance",
         "max_outer",
         "relaxation",
@@ -429,7 +469,17 @@ pub(crate) fn solver(t: &Table<'_>, defaults: &SolverSettings) -> Res<SolverSett
         "predictor",
         "coupling_fallback",
     ])?;
-    let d = *defaults;
+    let mut d = *defaults;
+    let nonlinear = t.opt("nonlinear", d.nonlinear, |n| {
+        n.choice(
+            "nonlinear method",
+            &NonlinearMethod::ALL.map(|m| (m.name(), m)),
+        )
+    })?;
+    let newton = nonlinear == NonlinearMethod::NewtonKrylov;
+    if newton {
+        d.max_outer = NEWTON_MAX_ITERATIONS;
+    }
     let acceleration = t.opt("acceleration", d.acceleration, |n| {
         n.choice(
             "outer-iteration acceleration",
@@ -439,15 +489,36 @@ pub(crate) fn solver(t: &Table<'_>, defaults: &SolverSettings) -> Res<SolverSett
             ],
         )
     })?;
-    let linear_defaults = LinearSettings::for_acceleration(acceleration);
+    let linear_defaults = if newton {
+        LinearSettings::for_newton()
+    } else {
+        LinearSettings::for_acceleration(acceleration)
+    };
     let linear = match t.get("linear") {
         None => linear_defaults,
         Some(l) => {
             let node = l.node();
-            linear(&node.table()?, &linear_defaults)?
+            let table = node.table()?;
+            let s = linear(&table, &linear_defaults)?;
+            if s.method == LinearMethod::Gmres && !newton {
+                if let Some(m) = table.get("method") {
+                    return Err(m.node().err(
+                        "method \"gmres\" solves Newton's linear systems: it needs [solver] nonlinear = \"newton-krylov\" (the segregated method solves with \"pcg-ic\", \"bicgstab-ilu\" or \"direct\")",
+                    ));
+                }
+            }
+            if table.has("restart") && !newton {
+                if let Some(r) = table.get("restart") {
+                    return Err(r.node().err(
+                        "restart is the GMRES restart length of nonlinear = \"newton-krylov\"; the segregated method has no use for it",
+                    ));
+                }
+            }
+            s
         }
     };
     Ok(SolverSettings {
+        nonlinear,
         tolerance: t.opt("tolerance", d.tolerance, tolerance)?,
         max_outer: t.opt("max_outer", d.max_outer, |n| n.usize_min(1))?,
         relaxation: t.opt("relaxation", d.relaxation, |n| {
@@ -506,7 +577,7 @@ pub(crate) fn solver(t: &Table<'_>, defaults: &SolverSettings) -> Res<SolverSett
 }
 
 fn linear(t: &Table<'_>, d: &LinearSettings) -> Res<LinearSettings> {
-    t.deny_unknown(&["method", "tolerance", "max_iterations"])?;
+    t.deny_unknown(&["method", "tolerance", "max_iterations", "restart"])?;
     Ok(LinearSettings {
         method: t.opt("method", d.method, |n| {
             n.choice(
@@ -515,13 +586,26 @@ fn linear(t: &Table<'_>, d: &LinearSettings) -> Res<LinearSettings> {
                     ("pcg-ic", LinearMethod::PcgIc),
                     ("direct", LinearMethod::Direct),
                     ("bicgstab-ilu", LinearMethod::BicgstabIlu),
+                    ("gmres", LinearMethod::Gmres),
                 ],
             )
         })?,
         tolerance: t.opt("tolerance", d.tolerance, tolerance)?,
         max_iterations: t.opt("max_iterations", d.max_iterations, |n| n.usize_min(1))?,
+        restart: t.opt("restart", d.restart, |n| {
+            let m = n.usize_min(1)?;
+            if m > MAX_RESTART {
+                return Err(n.err(format!(
+                    "restart = {m} is more than {MAX_RESTART} (each Krylov vector of the basis is kept in memory)"
+                )));
+            }
+            Ok(m)
+        })?,
     })
 }
+
+/// Largest GMRES restart length accepted.
+pub const MAX_RESTART: usize = 500;
 
 pub(crate) fn output(t: &Table<'_>) -> Res<OutputSettings> {
     t.deny_unknown(&["directory", "every"])?;

@@ -150,6 +150,7 @@ every = 5
     assert_eq!(
         c.solver,
         SolverSettings {
+            nonlinear: fv_nonlinear::NonlinearMethod::Segregated,
             tolerance: 1e-8,
             max_outer: 300,
             relaxation: 0.7,
@@ -157,7 +158,8 @@ every = 5
             linear: LinearSettings {
                 method: LinearMethod::BicgstabIlu,
                 tolerance: 1e-3,
-                max_iterations: 50
+                max_iterations: 50,
+                restart: 30
             },
             rhie_chow: 0.0,
             rhie_chow_given: true,

@@ -459,7 +459,8 @@ fn case_format_example_parses_with_stated_values() {
         LinearSettings {
             method: LinearMethod::PcgIc,
             tolerance: 0.1,
-            max_iterations: 500
+            max_iterations: 500,
+            restart: 30
         }
     );
     assert_eq!(c.solver.rhie_chow, 0.1);

@@ -1,0 +1,193 @@
+//! Contact inside the residual of Newton's method: the contact tractions
+//! as a function of the state, nothing relaxed, nothing remembered from
+//! one evaluation to the next but what the increment freezes (the
+//! friction history of its start, the augmented multipliers, the penalty
+//! localised at its first evaluation) and, through the Jacobian products
+//! of one Newton step, the candidate pairs.
+//!
+//! Every evaluation moves the contact surfaces to the bodies' current
+//! boundary values (cell-to-point least squares, eqs. 3.31–3.32, or the
+//! rigid motion), computes the tractions of both surfaces with the case's
+//! algorithm (§4.3–4.4) and writes them, without a spring, into the
+//! deformable sides' contact conditions, where the face balance of the
+//! state takes them (`SolidMomentum::compute_residual_with_face_rows`).
+//! Between two deformable bodies under the updated Lagrangian form each
+//! face carries its traction over the moved surface's area, as implicit
+//! coupling does, so the two bodies receive equal and opposite forces.
+use super::{transmitted_forces, ContactSet, ContactSide};
+use crate::model::Body;
+use crate::profile::Phase;
+use fv_discretise::PatchCondition;
+use fv_mesh::Vector;
+use fv_nonlinear::Frozen;
+
+/// The contact state of a face, compared between renewals: no pressure,
+/// pressure without friction, sticking, slipping.
+fn face_state(pressure: f64, stick: bool, slip: bool) -> u8 {
+    match (pressure > 0.0, stick, slip) {
+        (false, _, _) => 0,
+        (true, true, _) => 2,
+        (true, _, true) => 3,
+        (true, false, false) => 1,
+    }
+}
+
+impl ContactSet {
+    /// Turns every contact patch of a deformable body into a contact
+    /// condition that the state's face balance reads (once, after the
+    /// bodies are built).
+    pub fn prepare_state_conditions(&self, bodies: &mut [Body]) {
+        for ci in &self.interfaces {
+            ci.linearise_patches(bodies);
+        }
+    }
+
+    /// The contact tractions of the bodies' current state (their boundary
+    /// values set): with [`Frozen::Renew`] the candidate pairs are detected
+    /// anew (and, at the first such call of an increment, the penalty
+    /// localised to the contacting faces); with [`Frozen::Keep`] those of
+    /// the last renewal are used. Returns, for a renewal, how many faces
+    /// changed their contact state (open, pressed, sticking, slipping)
+    /// against the last renewal.
+    pub fn evaluate_state(&mut self, bodies: &mut [Body], frozen: Frozen) -> Result<usize, String> {
+        // a patch in several pairs sums their tractions
+        for ci in &self.interfaces {
+            for side in [&ci.master, &ci.slave].into_iter().filter(|s| s.shared) {
+                if let PatchCondition::LinearisedContact(lc) =
+                    &mut bodies[side.body].momentum.conditions[side.patch]
+                {
+                    lc.traction.fill(Vector::zeros());
+                }
+            }
+        }
+        let mut changes = 0;
+        for ci in &mut self.interfaces {
+            let start = std::time::Instant::now();
+            Self::move_side(&mut ci.master, bodies, &self.cell_to_point);
+            Self::move_side(&mut ci.slave, bodies, &self.cell_to_point);
+            if ci.face_shifts {
+                Self::face_shifts(&mut ci.master, bodies);
+                Self::face_shifts(&mut ci.slave, bodies);
+            }
+            let eps = ci.law.normal_penalty;
+            if ci.augmentation.is_some() && eps > 0.0 && ci.multiplier.iter().any(|&l| l > 0.0) {
+                let slave = &ci.slave;
+                ci.augmented_shift.clear();
+                ci.augmented_shift
+                    .extend((0..slave.surface.n_faces()).map(|f| {
+                        let base = slave
+                            .face_shift
+                            .get(f)
+                            .copied()
+                            .unwrap_or_else(Vector::zeros);
+                        base + slave.surface.face_normals[f] * (ci.multiplier[f] / eps)
+                    }));
+                ci.algorithm
+                    .set_face_shifts(&ci.master.face_shift, &ci.augmented_shift);
+            } else if ci.face_shifts || ci.augmentation.is_some() {
+                ci.algorithm
+                    .set_face_shifts(&ci.master.face_shift, &ci.slave.face_shift);
+            }
+            if frozen == Frozen::Renew {
+                ci.detector
+                    .detect(&ci.master.surface, &ci.slave.surface, &mut ci.pairs)
+                    .map_err(|e| format!("contact {}: detection: {e}", ci.slave_name))?;
+            }
+            let force_start = self.times.lap(Phase::ContactDetection, start);
+            if frozen == Frozen::Renew && !ci.penalty_localised && !ci.pairs.is_empty() {
+                if let Ok(law) = super::penalty_law(
+                    &ci.params,
+                    &ci.master.surface,
+                    &ci.slave.surface,
+                    &ci.materials,
+                    Some(&ci.pairs),
+                ) {
+                    ci.law = law;
+                }
+                ci.penalty_localised = true;
+            }
+            ci.stats = ci
+                .algorithm
+                .compute(
+                    &ci.master.surface,
+                    &ci.slave.surface,
+                    &ci.pairs,
+                    &ci.law,
+                    &mut ci.tractions,
+                )
+                .map_err(|e| format!("contact {}: {e}", ci.slave_name))?;
+            if ci.augmentation.is_some() {
+                ci.unshift_augmented_gaps();
+            }
+            transmitted_forces(&mut ci.stats, &ci.tractions, &ci.master, &ci.slave, bodies);
+            let deformable_pair = ci.deformable_pair;
+            for (side, contact) in [
+                (&mut ci.master, &ci.tractions.master),
+                (&mut ci.slave, &ci.tractions.slave),
+            ] {
+                if frozen == Frozen::Renew {
+                    changes += count_changes(side, contact);
+                }
+                let b = &mut bodies[side.body];
+                if b.rigid {
+                    continue;
+                }
+                let ul = b.momentum.law.is_updated_lagrangian();
+                let first = b.mesh.patches[side.patch].start;
+                let n = side.surface.n_faces();
+                let PatchCondition::LinearisedContact(lc) = &mut b.momentum.conditions[side.patch]
+                else {
+                    continue;
+                };
+                for i in 0..n {
+                    let t = contact.traction(i);
+                    if side.shared {
+                        lc.traction[i] += t;
+                    } else {
+                        lc.traction[i] = t;
+                    }
+                    lc.stiffness[i] = 0.0;
+                    lc.tangential_stiffness[i] = 0.0;
+                    lc.normal[i] = side.surface.face_normals[i];
+                    lc.opposite_shift[i] = Vector::zeros();
+                    // between deformable bodies each receives the force the
+                    // contact computed, over the moved surface's areas
+                    lc.area_ratio[i] = if deformable_pair && ul {
+                        let r = side.surface.face_mag[i] / b.geom.face_mag[first + i];
+                        if r.is_finite() {
+                            r
+                        } else {
+                            0.0
+                        }
+                    } else {
+                        0.0
+                    };
+                }
+            }
+            self.times.lap(Phase::ContactForce, force_start);
+        }
+        Ok(changes)
+    }
+}
+
+/// Faces of `side` whose contact state differs from the last renewal's;
+/// records the new states.
+fn count_changes(side: &mut ContactSide, contact: &contact_force::SurfaceContact) -> usize {
+    let n = contact.n_faces();
+    if side.state_signature.len() != n {
+        side.state_signature.clear();
+        side.state_signature.resize(n, 0);
+    }
+    let mut changed = 0;
+    for (i, s) in side.state_signature.iter_mut().enumerate() {
+        let st = contact.friction_state[i];
+        let new = face_state(
+            contact.pressure[i],
+            st == contact_force::FrictionState::Stick,
+            st == contact_force::FrictionState::Slip,
+        );
+        changed += usize::from(*s != new);
+        *s = new;
+    }
+    changed
+}

@@ -1,0 +1,370 @@
+//! The preconditioner of Newton's method: the segregated operator of the
+//! thesis — per displacement component, the compact (2μ + λ) Laplacian of
+//! eq. 3.29 with the boundary diagonal of eq. 3.19 — extended to the
+//! state's face nodes and to the contact penalty springs, factorised by
+//! IC(0).
+//!
+//! A traction-type face is a node of its own joined to its owner cell by
+//! the half-cell coefficient a_b = K|Γ|/|d_n|: eliminated, it gives the
+//! owner nothing (a free face), as the segregated matrix has it. A contact
+//! face against a rigid body adds ε_n β|Γ| (n_c² normal, ε_t β|Γ| (1 − n_c²)
+//! tangential when there is friction) to its node's diagonal; two
+//! deformable faces that overlap by the GGI area ω are joined by a spring
+//! ε_n β ω. Eliminating the face nodes gives the springs in series with the
+//! half cells, the cell coupling of implicit contact (eqs. 4.54, 4.63–4.72).
+//! The matrix approximates −J: F(x + δ) ≈ F(x) − P δ.
+use super::layout::StateLayout;
+use crate::contact_coupling::ContactSet;
+use crate::model::Body;
+use fv_discretise::{CsrMatrix, FaceSlots, LinearSolverError, PatchCondition, PcgIc0};
+use fv_mesh::Vector;
+
+/// Diagonal added to a body that nothing holds in a component (no
+/// prescribed face, no contact spring yet), relative to its cells'
+/// diagonal: it keeps the factorisation regular; the Newton step then
+/// moves the body freely until contact holds it.
+const FLOATING_STABILISATION: f64 = 1e-5;
+
+/// A face of a contact surface whose gap is at most this fraction of its
+/// size (√area) gets the spring of a face in contact although it carries
+/// no pressure yet: bodies meshed touching would otherwise be free in
+/// their first step.
+const TOUCHING_GAP: f64 = 1e-6;
+
+/// One matrix and IC(0) factor per solved component.
+#[derive(Default)]
+pub struct StatePreconditioner {
+    matrices: Vec<CsrMatrix>,
+    solvers: Vec<PcgIc0>,
+    /// Component → matrix (None: not solved).
+    component: [Option<usize>; 3],
+    /// Slots of the links (internal faces, then face-node links).
+    slots: FaceSlots,
+    /// Coefficient of every link.
+    link_coefficient: Vec<f64>,
+    /// Contact springs between face nodes: (node a, node b, k_n, k_t, normal).
+    springs: Vec<(u32, u32, f64, f64, Vector)>,
+    spring_entries: Vec<(u32, u32)>,
+    spring_slots: Vec<u32>,
+    /// Diagonal per component (workspace), node numbering.
+    diagonal: [Vec<f64>; 3],
+    /// Whether a body is held in a component (workspace, per body).
+    held: Vec<[bool; 3]>,
+    /// Per node, bit c: its body floats in component c (workspace).
+    floating: Vec<u8>,
+    /// Component vectors of `precondition`.
+    r: Vec<f64>,
+    z: Vec<f64>,
+}
+
+impl StatePreconditioner {
+    /// Builds the pattern of the links: the internal faces of every
+    /// deformable body and the link of every face node to its owner cell.
+    pub fn new(bodies: &[Body], layout: &StateLayout) -> Self {
+        let mut owner = Vec::new();
+        let mut neighbour = Vec::new();
+        for b in bodies.iter().filter(|b| !b.rigid) {
+            let off = b.offset as u32;
+            let ni = b.mesh.n_internal_faces();
+            owner.extend(b.mesh.owner[..ni].iter().map(|&o| o + off));
+            neighbour.extend(b.mesh.neighbour.iter().map(|&x| x + off));
+        }
+        for &(bi, bf) in &layout.face_of_node {
+            let b = &bodies[bi as usize];
+            let f = b.mesh.n_internal_faces() + bf as usize;
+            owner.push(b.offset as u32 + b.mesh.owner[f]);
+        }
+        neighbour.extend((layout.n_cells..layout.n_nodes).map(|n| n as u32));
+        let (matrix, slots) = CsrMatrix::from_faces(layout.n_nodes, &owner, &neighbour);
+        let component = std::array::from_fn(|c| (!layout.unsolved[c]).then_some(c));
+        let n_solved = (0..3).filter(|&c| !layout.unsolved[c]).count().max(1);
+        StatePreconditioner {
+            matrices: vec![matrix; n_solved],
+            solvers: (0..n_solved).map(|_| PcgIc0::new(layout.n_nodes)).collect(),
+            component: renumber(component),
+            link_coefficient: vec![0.0; owner.len()],
+            slots,
+            springs: Vec::new(),
+            spring_entries: Vec::new(),
+            spring_slots: Vec::new(),
+            diagonal: std::array::from_fn(|_| vec![0.0; layout.n_nodes]),
+            held: vec![[false; 3]; bodies.len()],
+            floating: vec![0; layout.n_nodes],
+            r: vec![0.0; layout.n_nodes],
+            z: vec![0.0; layout.n_nodes],
+        }
+    }
+
+    /// Bytes held by the matrices and factors (an estimate: values,
+    /// indices and the factors' triangles).
+    pub fn memory_bytes(&self) -> usize {
+        self.matrices
+            .iter()
+            .map(|m| m.nnz() * 12 * 2 + m.n() * 16)
+            .sum()
+    }
+
+    /// Assembles and factorises the matrices about the current state of
+    /// the bodies and the contact tractions of its last evaluation.
+    pub fn assemble(
+        &mut self,
+        bodies: &[Body],
+        contacts: &ContactSet,
+        layout: &StateLayout,
+    ) -> Result<(), LinearSolverError> {
+        // link coefficients: internal faces, then face nodes
+        let mut k = 0;
+        for b in bodies.iter().filter(|b| !b.rigid) {
+            for f in 0..b.mesh.n_internal_faces() {
+                self.link_coefficient[k] = b.momentum.face_coefficient(&b.geom, f);
+                k += 1;
+            }
+        }
+        for &(bi, bf) in &layout.face_of_node {
+            let b = &bodies[bi as usize];
+            let f = b.mesh.n_internal_faces() + bf as usize;
+            self.link_coefficient[k] = b.momentum.face_coefficient(&b.geom, f);
+            k += 1;
+        }
+        for d in &mut self.diagonal {
+            d.iter_mut().for_each(|v| *v = 0.0);
+        }
+        self.held.iter_mut().for_each(|h| *h = [false; 3]);
+        self.boundary_diagonal(bodies);
+        self.contact_springs(bodies, contacts, layout);
+        // the spring entries join face nodes of two bodies: grow the
+        // pattern when new pairs appear
+        self.spring_entries.clear();
+        for s in &self.springs {
+            self.spring_entries.push((s.0, s.1));
+            self.spring_entries.push((s.1, s.0));
+        }
+        if !self.spring_entries.is_empty()
+            && !self.matrices[0].find_entries(&self.spring_entries, &mut self.spring_slots)
+        {
+            for (mi, m) in self.matrices.iter_mut().enumerate() {
+                let growth = m.add_entries(&self.spring_entries)?;
+                if mi == 0 {
+                    self.slots.remap(&growth);
+                    self.spring_slots.clear();
+                    self.spring_slots.extend_from_slice(&growth.slots);
+                }
+            }
+        }
+        self.floating(bodies);
+        for c in 0..3 {
+            let Some(mi) = self.component[c] else {
+                continue;
+            };
+            let m = &mut self.matrices[mi];
+            m.fill_zero();
+            let v = m.values_mut();
+            for ((&up, &lo), &a) in self
+                .slots
+                .upper
+                .iter()
+                .zip(&self.slots.lower)
+                .zip(&self.link_coefficient)
+            {
+                v[up as usize] -= a;
+                v[lo as usize] -= a;
+            }
+            for (s, slots) in self.springs.iter().zip(self.spring_slots.chunks_exact(2)) {
+                let kc = spring_component(s, c);
+                v[slots[0] as usize] -= kc;
+                v[slots[1] as usize] -= kc;
+            }
+            // diagonal: the links' and springs' coefficients of the row
+            // (a Laplacian), a floating body's stabilisation, and the
+            // boundary and contact diagonals
+            for i in 0..m.n() {
+                let (_, vals) = m.row(i);
+                let links = -vals.iter().sum::<f64>();
+                let k = m.diag_index()[i] as usize;
+                let float = if self.floating[i] & (1 << c) != 0 {
+                    FLOATING_STABILISATION * links
+                } else {
+                    0.0
+                };
+                m.values_mut()[k] = links + float + self.diagonal[c][i];
+            }
+        }
+        for (s, m) in self.solvers.iter_mut().zip(&self.matrices) {
+            s.factorise(m)?;
+        }
+        Ok(())
+    }
+
+    /// Boundary diagonal of the cells (eq. 3.19 and the kinematic faces)
+    /// and the temporal term, per component.
+    fn boundary_diagonal(&mut self, bodies: &[Body]) {
+        for (bi, b) in bodies.iter().enumerate().filter(|(_, b)| !b.rigid) {
+            let m = &b.momentum;
+            for (p, cond) in b.mesh.patches.iter().zip(&m.conditions) {
+                for f in p.faces() {
+                    let a = m.face_coefficient(&b.geom, f);
+                    let o = b.offset + b.mesh.owner[f] as usize;
+                    let n = b.geom.face_normals[f];
+                    for c in 0..3 {
+                        let add = match cond {
+                            PatchCondition::Displacement(_) => a,
+                            PatchCondition::Symmetry | PatchCondition::NormalDisplacement(_) => {
+                                a * n[c] * n[c]
+                            }
+                            PatchCondition::Wedge(r) => {
+                                a * (1.0 - r[f - p.start][(c, c)].powi(2)).max(0.0)
+                            }
+                            _ => 0.0,
+                        };
+                        if add > 0.0 {
+                            self.diagonal[c][o] += add;
+                            self.held[bi][c] = true;
+                        }
+                    }
+                }
+            }
+            if let Some(inertia) = &m.inertia {
+                for i in 0..b.mesh.n_cells {
+                    for c in 0..3 {
+                        self.diagonal[c][b.offset + i] += inertia.diagonal(i);
+                    }
+                }
+                self.held[bi] = [true; 3];
+            }
+        }
+    }
+
+    /// The contact springs of the last contact evaluation: grounded ones on
+    /// the face nodes' diagonals, the others into `springs`.
+    fn contact_springs(&mut self, bodies: &[Body], contacts: &ContactSet, layout: &StateLayout) {
+        self.springs.clear();
+        for ci in &contacts.interfaces {
+            let eps = ci.normal_penalty();
+            let eps_t = ci.tangential_penalty();
+            let (mb, sb) = (ci.master.body, ci.slave.body);
+            let beta = |side: &crate::contact_coupling::ContactSide,
+                        contact: &contact_force::SurfaceContact,
+                        i: usize| {
+                let c = contact.contact_fraction.get(i).copied().unwrap_or(0.0);
+                let g = contact.gap.get(i).copied().unwrap_or(f64::INFINITY);
+                if c == 0.0 && g.is_finite() && g <= TOUCHING_GAP * side.surface.face_mag[i].sqrt()
+                {
+                    1.0
+                } else {
+                    c
+                }
+            };
+            if bodies[mb].rigid || bodies[sb].rigid {
+                for (side, contact) in [
+                    (&ci.master, &ci.tractions.master),
+                    (&ci.slave, &ci.tractions.slave),
+                ] {
+                    let b = &bodies[side.body];
+                    if b.rigid {
+                        continue;
+                    }
+                    let start = b.mesh.patches[side.patch].start - b.mesh.n_internal_faces();
+                    for i in 0..side.surface.n_faces() {
+                        let be = beta(side, contact, i);
+                        if !(be > 0.0) {
+                            continue;
+                        }
+                        let Some(node) = layout.face_node(side.body, start + i) else {
+                            continue;
+                        };
+                        let a = side.surface.face_mag[i] * be;
+                        let n = side.surface.face_normals[i];
+                        for c in 0..3 {
+                            let nc2 = n[c] * n[c];
+                            self.diagonal[c][node] += a * (eps * nc2 + eps_t * (1.0 - nc2));
+                        }
+                        self.held[side.body] = [true; 3];
+                    }
+                }
+                continue;
+            }
+            let (bm, bs) = (&bodies[mb], &bodies[sb]);
+            let m_start = bm.mesh.patches[ci.master.patch].start - bm.mesh.n_internal_faces();
+            let s_start = bs.mesh.patches[ci.slave.patch].start - bs.mesh.n_internal_faces();
+            for m in 0..ci.master.surface.n_faces() {
+                let be = beta(&ci.master, &ci.tractions.master, m);
+                if !(be > 0.0) {
+                    continue;
+                }
+                let Some(nm) = layout.face_node(mb, m_start + m) else {
+                    continue;
+                };
+                let normal = ci.master.surface.face_normals[m];
+                let (slaves, overlaps) = ci.tractions.ggi.master_row(m);
+                for (&s, &w) in slaves.iter().zip(overlaps) {
+                    let Some(ns) = layout.face_node(sb, s_start + s as usize) else {
+                        continue;
+                    };
+                    if !(w > 0.0) {
+                        continue;
+                    }
+                    self.springs
+                        .push((nm as u32, ns as u32, eps * be * w, eps_t * be * w, normal));
+                    self.held[mb] = [true; 3];
+                    self.held[sb] = [true; 3];
+                }
+            }
+        }
+    }
+
+    /// Marks the cells of a body held by nothing in a component for the
+    /// [`FLOATING_STABILISATION`] of their diagonal.
+    fn floating(&mut self, bodies: &[Body]) {
+        self.floating.iter_mut().for_each(|f| *f = 0);
+        for (bi, b) in bodies.iter().enumerate().filter(|(_, b)| !b.rigid) {
+            for c in 0..3 {
+                if !self.held[bi][c] {
+                    for f in &mut self.floating[b.offset..b.offset + b.mesh.n_cells] {
+                        *f |= 1 << c;
+                    }
+                }
+            }
+        }
+    }
+
+    /// z = P⁻¹ r (interleaved node-major vectors).
+    pub fn apply(&mut self, r: &[f64], z: &mut [f64]) {
+        for c in 0..3 {
+            let Some(mi) = self.component[c] else {
+                for zi in z.iter_mut().skip(c).step_by(3) {
+                    *zi = 0.0;
+                }
+                continue;
+            };
+            for (rc, ri) in self.r.iter_mut().zip(r.iter().skip(c).step_by(3)) {
+                *rc = *ri;
+            }
+            if self.solvers[mi]
+                .apply_preconditioner(&self.r, &mut self.z)
+                .is_err()
+            {
+                self.z.copy_from_slice(&self.r);
+            }
+            for (zi, zc) in z.iter_mut().skip(c).step_by(3).zip(&self.z) {
+                *zi = *zc;
+            }
+        }
+    }
+}
+
+/// Component c of a spring's tensor k_n n⊗n + k_t (I − n⊗n), diagonal.
+fn spring_component(s: &(u32, u32, f64, f64, Vector), c: usize) -> f64 {
+    let nc2 = s.4[c] * s.4[c];
+    s.2 * nc2 + s.3 * (1.0 - nc2)
+}
+
+/// Components numbered among the solved ones.
+fn renumber(c: [Option<usize>; 3]) -> [Option<usize>; 3] {
+    let mut k = 0;
+    c.map(|o| {
+        o.map(|_| {
+            k += 1;
+            k - 1
+        })
+    })
+}

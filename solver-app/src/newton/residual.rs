@@ -1,0 +1,241 @@
+//! The discretised balance of every deformable body, with the contact
+//! tractions, as a function of the state x — the increment of the cell
+//! displacements and of the traction-type faces' values over the step
+//! ([`StateLayout`]). This is the F(x) of Newton's method: the same faces,
+//! Rhie–Chow term, boundary conditions and contact tractions as the
+//! segregated method, with the boundary values and contact tractions
+//! computed from x inside the call.
+use super::layout::StateLayout;
+use super::preconditioner::StatePreconditioner;
+use crate::contact_coupling::ContactSet;
+use crate::model::Body;
+use crate::profile::{Phase, PhaseTimes};
+use fv_discretise::MomentumParams;
+use fv_mesh::Vector;
+use fv_nonlinear::{Frozen, Inadmissible, NonlinearProblem};
+use std::time::Instant;
+
+/// The force scale is at least this fraction of K |Γ| L summed as the
+/// residual reference is (a state at rest, with nothing loaded).
+const REFERENCE_FLOOR: f64 = 1e-12;
+
+/// Typical size of an unknown for the finite-difference step, as a
+/// fraction of the largest body's extent.
+const TYPICAL_FRACTION: f64 = 1e-6;
+
+/// Workspaces of the residual, kept across increments.
+#[derive(Debug, Default)]
+pub struct ResidualWork {
+    /// Per body, the face rows of its boundary faces.
+    face_rows: Vec<Vec<Vector>>,
+    /// The state at the start of the increment (cells' u, faces' u_b).
+    pub start: Vec<f64>,
+}
+
+impl ResidualWork {
+    /// Sized for `bodies`.
+    pub fn new(bodies: &[Body], layout: &StateLayout) -> Self {
+        ResidualWork {
+            face_rows: bodies
+                .iter()
+                .map(|b| {
+                    if b.rigid {
+                        Vec::new()
+                    } else {
+                        vec![Vector::zeros(); b.mesh.n_faces() - b.mesh.n_internal_faces()]
+                    }
+                })
+                .collect(),
+            start: vec![0.0; layout.len()],
+        }
+    }
+
+    /// Records the bodies' current values as the start of the increment.
+    pub fn record_start(&mut self, bodies: &[Body], layout: &StateLayout) {
+        for b in bodies.iter().filter(|b| !b.rigid) {
+            for (i, u) in b.momentum.u.iter().enumerate() {
+                let k = 3 * (b.offset + i);
+                self.start[k..k + 3].copy_from_slice(u.as_slice());
+            }
+        }
+        for (node, &(bi, bf)) in layout.face_of_node.iter().enumerate() {
+            let u = bodies[bi as usize].momentum.u_b[bf as usize];
+            let k = 3 * (layout.n_cells + node);
+            self.start[k..k + 3].copy_from_slice(u.as_slice());
+        }
+    }
+}
+
+/// F(x) of the model for [`fv_nonlinear::NewtonKrylov`].
+pub struct ModelProblem<'a> {
+    /// The bodies (their fields hold the last evaluated state).
+    pub bodies: &'a mut [Body],
+    /// The contact pairs.
+    pub contacts: &'a mut ContactSet,
+    /// Numbering of the unknowns.
+    pub layout: &'a StateLayout,
+    /// Discretisation parameters.
+    pub params: MomentumParams,
+    /// Workspaces and the start of the increment.
+    pub work: &'a mut ResidualWork,
+    /// The preconditioner.
+    pub preconditioner: &'a mut StatePreconditioner,
+    /// Seconds per phase.
+    pub times: &'a mut PhaseTimes,
+    /// Force scale of the last renewed evaluation.
+    pub reference: f64,
+    /// Contact faces that changed state at the last renewal.
+    pub changes: usize,
+    /// Largest body extent.
+    pub length_scale: f64,
+    /// Smallest force scale (K |Γ| L of the bodies, times [`REFERENCE_FLOOR`]).
+    pub reference_floor: f64,
+    /// Residual evaluations made.
+    pub evaluations: usize,
+    /// Why the last evaluation was refused, if it was.
+    pub last_refusal: Option<String>,
+}
+
+/// The smallest force scale of the bodies: [`REFERENCE_FLOOR`] × Σ K |Γ|
+/// over their boundary faces × the largest extent / the number of faces.
+pub fn reference_floor(bodies: &[Body]) -> f64 {
+    let mut s = 0.0;
+    for b in bodies.iter().filter(|b| !b.rigid) {
+        let ni = b.mesh.n_internal_faces();
+        let area: f64 = b.geom.face_mag[ni..].iter().sum();
+        s += b.momentum.k * area;
+    }
+    REFERENCE_FLOOR * s
+}
+
+impl ModelProblem<'_> {
+    /// Sets the bodies' unknown fields to the start plus `x`.
+    fn scatter(&mut self, x: &[f64]) {
+        let start = &self.work.start;
+        for b in self.bodies.iter_mut().filter(|b| !b.rigid) {
+            for (i, u) in b.momentum.u.iter_mut().enumerate() {
+                let k = 3 * (b.offset + i);
+                *u = Vector::new(
+                    start[k] + x[k],
+                    start[k + 1] + x[k + 1],
+                    start[k + 2] + x[k + 2],
+                );
+            }
+        }
+        for (node, &(bi, bf)) in self.layout.face_of_node.iter().enumerate() {
+            let k = 3 * (self.layout.n_cells + node);
+            self.bodies[bi as usize].momentum.u_b[bf as usize] = Vector::new(
+                start[k] + x[k],
+                start[k + 1] + x[k + 1],
+                start[k + 2] + x[k + 2],
+            );
+        }
+    }
+
+    fn evaluate(&mut self, x: &[f64], f: &mut [f64], frozen: Frozen) -> Result<(), Inadmissible> {
+        self.evaluations += 1;
+        let t0 = Instant::now();
+        self.scatter(x);
+        for b in self.bodies.iter_mut().filter(|b| !b.rigid) {
+            b.momentum.boundary_values_and_gradient_of_state(&b.mesh);
+            b.measure_loaded_faces();
+        }
+        let t1 = self.times.lap(Phase::BoundaryValues, t0);
+        for b in self.bodies.iter_mut().filter(|b| !b.rigid) {
+            if let Some((cell, jacobian)) = b.momentum.update_stress() {
+                return Err(Inadmissible(format!(
+                    "body '{}': cell {cell}: relative Jacobian det f = {jacobian:.3e} is not positive",
+                    b.name
+                )));
+            }
+        }
+        self.times.lap(Phase::GradientAndStress, t1);
+        if !self.contacts.is_empty() {
+            let changes = self
+                .contacts
+                .evaluate_state(self.bodies, frozen)
+                .map_err(Inadmissible)?;
+            if frozen == Frozen::Renew {
+                self.changes = changes;
+            }
+        }
+        let t2 = Instant::now();
+        let mut scale2 = 0.0;
+        for (b, rows) in self.bodies.iter_mut().zip(self.work.face_rows.iter_mut()) {
+            if b.rigid {
+                continue;
+            }
+            scale2 +=
+                b.momentum
+                    .compute_residual_with_face_rows(&b.mesh, &b.geom, &self.params, rows);
+        }
+        // gather: cells, then face rows; unsolved components are zero
+        let unsolved = self.layout.unsolved;
+        for b in self.bodies.iter().filter(|b| !b.rigid) {
+            for (i, r) in b.momentum.residual.iter().enumerate() {
+                let k = 3 * (b.offset + i);
+                f[k..k + 3].copy_from_slice(r.as_slice());
+            }
+        }
+        for (node, &(bi, bf)) in self.layout.face_of_node.iter().enumerate() {
+            let k = 3 * (self.layout.n_cells + node);
+            let r = self.work.face_rows[bi as usize][bf as usize];
+            f[k..k + 3].copy_from_slice(r.as_slice());
+        }
+        for (c, &off) in unsolved.iter().enumerate() {
+            if off {
+                f.iter_mut().skip(c).step_by(3).for_each(|v| *v = 0.0);
+            }
+        }
+        self.times.lap(Phase::ResidualAssembly, t2);
+        if !f.iter().all(|v| v.is_finite()) {
+            return Err(Inadmissible("the residual is not finite".into()));
+        }
+        if frozen == Frozen::Renew {
+            self.reference = scale2.sqrt().max(self.reference_floor);
+        }
+        Ok(())
+    }
+}
+
+impl NonlinearProblem for ModelProblem<'_> {
+    fn len(&self) -> usize {
+        self.layout.len()
+    }
+
+    fn residual(&mut self, x: &[f64], f: &mut [f64], frozen: Frozen) -> Result<(), Inadmissible> {
+        let r = self.evaluate(x, f, frozen);
+        if let Err(e) = &r {
+            self.last_refusal = Some(e.0.clone());
+        }
+        r
+    }
+
+    fn residual_reference(&self) -> f64 {
+        self.reference
+    }
+
+    fn typical_size(&self) -> f64 {
+        TYPICAL_FRACTION * self.length_scale
+    }
+
+    fn changes_at_last_renewal(&self) -> usize {
+        self.changes
+    }
+
+    fn prepare_preconditioner(&mut self, _x: &[f64]) -> Result<(), Inadmissible> {
+        let t = Instant::now();
+        let r = self
+            .preconditioner
+            .assemble(self.bodies, self.contacts, self.layout)
+            .map_err(|e| Inadmissible(e.to_string()));
+        self.times.lap(Phase::MatrixAssembly, t);
+        r
+    }
+
+    fn precondition(&mut self, r: &[f64], z: &mut [f64]) {
+        let t = Instant::now();
+        self.preconditioner.apply(r, z);
+        self.times.lap(Phase::LinearSolve, t);
+    }
+}

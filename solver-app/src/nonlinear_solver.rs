@@ -1,0 +1,114 @@
+//! The seam between the time loop and the method that solves an
+//! increment ([`fv_nonlinear::NonlinearMethod`]): the time loop — load
+//! steps, cut-backs, force control, output, summary — is the same for
+//! every method and calls it through [`NonlinearSolver`].
+use crate::case::SolverSettings;
+use crate::contact_coupling::ContactSet;
+use crate::model::Body;
+use crate::newton::NewtonKrylovSolver;
+use crate::predictor::PathChange;
+use crate::profile::PhaseTimes;
+use crate::segregated::{IncrementInfo, SegregatedSolver, SolveError};
+use fv_nonlinear::NonlinearMethod;
+
+/// A method that solves the balance of one increment.
+pub trait NonlinearSolver {
+    /// Which method this is.
+    fn method(&self) -> NonlinearMethod;
+
+    /// Sets up what depends on the geometry and the material stiffness
+    /// (the segregated matrices); called at the start, after every
+    /// increment that moved the meshes and when the time step changes.
+    fn prepare(&mut self, bodies: &[Body]) -> Result<(), SolveError>;
+
+    /// The change of the prescribed values over the step the next
+    /// [`Self::solve_increment`] solves, from `t0` to `t1` (predictor).
+    fn set_step(&mut self, path: &PathChange, t0: f64, t1: f64);
+
+    /// The attempts at the current increment that failed so far (0 for a
+    /// new increment): the next attempt starts more cautiously.
+    fn set_divergence_retries(&mut self, retries: u32);
+
+    /// Solves one increment; on entry the bodies hold the converged state
+    /// of the previous one and the conditions of this one, on exit the
+    /// fields are those of the final iterate.
+    fn solve_increment(
+        &mut self,
+        bodies: &mut [Body],
+        contacts: &mut ContactSet,
+        on_iteration: &mut dyn FnMut(usize, f64),
+    ) -> Result<IncrementInfo, SolveError>;
+
+    /// Cells of all deformable bodies.
+    fn n_unknowns(&self) -> usize;
+
+    /// Seconds per phase so far.
+    fn times(&self) -> PhaseTimes;
+
+    /// Adds seconds to the phases (the time loop's own work).
+    fn times_mut(&mut self) -> &mut PhaseTimes;
+}
+
+/// The solver of `settings.nonlinear` for the bodies (whose contact
+/// conditions the contact set prepared for that method:
+/// [`prepare_contact_conditions`]).
+pub fn build(bodies: &[Body], settings: &SolverSettings) -> Box<dyn NonlinearSolver> {
+    match settings.nonlinear {
+        NonlinearMethod::Segregated => Box::new(SegregatedSolver::new(bodies, settings)),
+        NonlinearMethod::NewtonKrylov => Box::new(NewtonKrylovSolver::new(bodies, settings)),
+    }
+}
+
+/// The contact patches' conditions for `method`: implicit couplings as
+/// linearised conditions for the segregated method, every contact patch a
+/// face-balance condition for Newton–Krylov.
+pub fn prepare_contact_conditions(
+    method: NonlinearMethod,
+    contacts: &ContactSet,
+    bodies: &mut [Body],
+) {
+    match method {
+        NonlinearMethod::Segregated => contacts.prepare_conditions(bodies),
+        NonlinearMethod::NewtonKrylov => contacts.prepare_state_conditions(bodies),
+    }
+}
+
+impl NonlinearSolver for SegregatedSolver {
+    fn method(&self) -> NonlinearMethod {
+        NonlinearMethod::Segregated
+    }
+
+    fn prepare(&mut self, bodies: &[Body]) -> Result<(), SolveError> {
+        let linear = self.linear_settings();
+        self.assemble_and_factorise(bodies, &linear)
+    }
+
+    fn set_step(&mut self, path: &PathChange, t0: f64, t1: f64) {
+        SegregatedSolver::set_step(self, path, t0, t1);
+    }
+
+    fn set_divergence_retries(&mut self, retries: u32) {
+        SegregatedSolver::set_divergence_retries(self, retries);
+    }
+
+    fn solve_increment(
+        &mut self,
+        bodies: &mut [Body],
+        contacts: &mut ContactSet,
+        on_iteration: &mut dyn FnMut(usize, f64),
+    ) -> Result<IncrementInfo, SolveError> {
+        SegregatedSolver::solve_increment(self, bodies, contacts, on_iteration)
+    }
+
+    fn n_unknowns(&self) -> usize {
+        SegregatedSolver::n_unknowns(self)
+    }
+
+    fn times(&self) -> PhaseTimes {
+        self.times
+    }
+
+    fn times_mut(&mut self) -> &mut PhaseTimes {
+        &mut self.times
+    }
+}

@@ -9,6 +9,12 @@
 //! minimises the true one, ‖b − A x‖, which is what the Newton forcing term
 //! bounds.
 //!
+//! With [`GmresParams::flexible`] it is Saad's flexible GMRES (FGMRES,
+//! SIAM J. Sci. Comput. 14, 1993): the preconditioned vectors z_j are kept
+//! and the update is x += Z y, so the preconditioner may change from one
+//! iteration to the next — an inner Krylov solve, which costs far less
+//! than the residual evaluation behind each outer iteration.
+//!
 //! Orthogonalisation is modified Gram–Schmidt with one reorthogonalisation
 //! pass when the new vector lost more than [`REORTHOGONALISE`] of its norm
 //! (Daniel–Gragg–Kaufman–Stewart). The workspace — the Krylov basis of
@@ -38,6 +44,9 @@ pub struct GmresParams {
     pub max_iterations: usize,
     /// Relative target: stop when ‖b − A x‖ ≤ tolerance ‖b − A x₀‖.
     pub tolerance: f64,
+    /// Flexible GMRES: the preconditioner may vary between iterations
+    /// (one more vector per iteration is kept).
+    pub flexible: bool,
 }
 
 impl Default for GmresParams {
@@ -46,6 +55,7 @@ impl Default for GmresParams {
             restart: 30,
             max_iterations: 300,
             tolerance: 1e-2,
+            flexible: false,
         }
     }
 }
@@ -71,6 +81,8 @@ pub struct Gmres {
     restart: usize,
     /// Krylov basis v_0 … v_m.
     basis: Vec<Vec<f64>>,
+    /// The preconditioned basis z_0 … z_{m−1} (flexible GMRES only).
+    preconditioned: Vec<Vec<f64>>,
     /// Hessenberg matrix, column j at `j * (restart + 1)`.
     hessenberg: Vec<f64>,
     /// Givens rotations.
@@ -86,13 +98,19 @@ pub struct Gmres {
 }
 
 impl Gmres {
-    /// Workspace for `n` unknowns and `restart` vectors per cycle.
-    pub fn new(n: usize, restart: usize) -> Self {
+    /// Workspace for `n` unknowns and `restart` vectors per cycle (and
+    /// as many preconditioned ones when `flexible`).
+    pub fn new(n: usize, restart: usize, flexible: bool) -> Self {
         let m = restart.max(1);
         Gmres {
             n,
             restart: m,
             basis: (0..=m).map(|_| vec![0.0; n]).collect(),
+            preconditioned: if flexible {
+                (0..m).map(|_| vec![0.0; n]).collect()
+            } else {
+                Vec::new()
+            },
             hessenberg: vec![0.0; (m + 1) * m],
             cos: vec![0.0; m],
             sin: vec![0.0; m],
@@ -105,7 +123,9 @@ impl Gmres {
 
     /// Bytes held by the workspace.
     pub fn memory_bytes(&self) -> usize {
-        8 * (self.n * (self.basis.len() + 2) + self.hessenberg.len() + 4 * self.restart)
+        8 * (self.n * (self.basis.len() + self.preconditioned.len() + 2)
+            + self.hessenberg.len()
+            + 4 * self.restart)
     }
 
     /// Solves A x = b; `x` holds the initial guess on entry. The system
@@ -118,9 +138,12 @@ impl Gmres {
         x: &mut [f64],
         params: &GmresParams,
     ) -> Result<GmresInfo, Inadmissible> {
-        if b.len() != self.n || params.restart.max(1) != self.restart {
-            *self = Gmres::new(b.len(), params.restart);
+        let flexible = !self.preconditioned.is_empty();
+        if b.len() != self.n || params.restart.max(1) != self.restart || params.flexible != flexible
+        {
+            *self = Gmres::new(b.len(), params.restart, params.flexible);
         }
+        let flexible = params.flexible;
         let m = self.restart;
         let mut info = GmresInfo::default();
         let x_zero = x.iter().all(|v| *v == 0.0);
@@ -160,9 +183,14 @@ impl Gmres {
             let mut k = 0; // columns built in this cycle
             while k < m && info.iterations < params.max_iterations {
                 let j = k;
-                // w = A M⁻¹ v_j
-                sys.precondition(&self.basis[j], &mut self.z);
-                sys.apply(&self.z, &mut self.w)?;
+                // w = A M⁻¹ v_j (z_j kept when flexible)
+                let z = if flexible {
+                    &mut self.preconditioned[j]
+                } else {
+                    &mut self.z
+                };
+                sys.precondition(&self.basis[j], z);
+                sys.apply(z, &mut self.w)?;
                 info.iterations += 1;
                 let before = norm(&self.w);
                 let col = j * (m + 1);
@@ -217,12 +245,18 @@ impl Gmres {
                 let d = self.hessenberg[i * (m + 1) + i];
                 self.y[i] = if d != 0.0 { s / d } else { 0.0 };
             }
-            self.w.iter_mut().for_each(|v| *v = 0.0);
-            for i in 0..k {
-                axpy(self.y[i], &self.basis[i], &mut self.w);
+            if flexible {
+                for i in 0..k {
+                    axpy(self.y[i], &self.preconditioned[i], x);
+                }
+            } else {
+                self.w.iter_mut().for_each(|v| *v = 0.0);
+                for i in 0..k {
+                    axpy(self.y[i], &self.basis[i], &mut self.w);
+                }
+                sys.precondition(&self.w, &mut self.z);
+                axpy(1.0, &self.z, x);
             }
-            sys.precondition(&self.w, &mut self.z);
-            axpy(1.0, &self.z, x);
             if info.final_residual <= target {
                 info.converged = true;
                 return Ok(info);
@@ -287,13 +321,14 @@ mod tests {
         let x_true: Vec<f64> = (0..n).map(|i| (i as f64 * 0.1).sin()).collect();
         let mut b = vec![0.0; n];
         sys.apply(&x_true, &mut b).unwrap();
-        for restart in [5, 20, 150] {
+        for (restart, flexible) in [(5, false), (20, false), (150, false), (5, true), (20, true)] {
             let mut x = vec![0.0; n];
-            let mut g = Gmres::new(n, restart);
+            let mut g = Gmres::new(n, restart, flexible);
             let params = GmresParams {
                 restart,
                 max_iterations: 2000,
                 tolerance: 1e-10,
+                flexible,
             };
             let info = g.solve(&mut sys, &b, &mut x, &params).unwrap();
             assert!(info.converged, "restart {restart}: {info:?}");
@@ -323,11 +358,12 @@ mod tests {
         sys.jacobi = false;
         let b: Vec<f64> = (0..n).map(|i| 1.0 + i as f64).collect();
         let mut x = vec![0.0; n];
-        let mut g = Gmres::new(n, n);
+        let mut g = Gmres::new(n, n, false);
         let params = GmresParams {
             restart: n,
             max_iterations: n,
             tolerance: 1e-300,
+            flexible: false,
         };
         let info = g.solve(&mut sys, &b, &mut x, &params).unwrap();
         assert!(info.iterations <= n);
@@ -346,7 +382,7 @@ mod tests {
     fn a_zero_right_hand_side_needs_no_iteration() {
         let mut sys = convection_diffusion(8);
         let mut x = vec![0.0; 8];
-        let info = Gmres::new(8, 4)
+        let info = Gmres::new(8, 4, false)
             .solve(&mut sys, &[0.0; 8], &mut x, &GmresParams::default())
             .unwrap();
         assert!(info.converged && info.iterations == 0);

@@ -24,5 +24,5 @@ pub use forcing::{Forcing, ForcingParams};
 pub use gmres::{Gmres, GmresInfo, GmresParams, KrylovSystem};
 pub use line_search::LineSearchParams;
 pub use method::{NonlinearMethod, UnknownMethod};
-pub use newton_krylov::{NewtonError, NewtonInfo, NewtonKrylov, NewtonParams};
+pub use newton_krylov::{IterationReport, NewtonError, NewtonInfo, NewtonKrylov, NewtonParams};
 pub use problem::{Frozen, Inadmissible, NonlinearProblem};

@@ -48,6 +48,7 @@ impl Default for NewtonParams {
                 restart: 30,
                 max_iterations: 200,
                 tolerance: 0.1,
+                flexible: false,
             },
             forcing: ForcingParams::default(),
             line_search: LineSearchParams::default(),
@@ -118,6 +119,28 @@ pub enum NewtonError {
     },
 }
 
+/// What one Newton iteration did (for logs and traces).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct IterationReport {
+    /// The Newton iteration (0: the starting point).
+    pub iteration: usize,
+    /// ‖F‖ / reference after it.
+    pub residual: f64,
+    /// Forcing term of its linear solve.
+    pub forcing: f64,
+    /// Krylov iterations of its linear solve.
+    pub krylov_iterations: usize,
+    /// Relative residual the linear solve reached.
+    pub linear_residual: f64,
+    /// Step length λ accepted by the line search.
+    pub step_length: f64,
+    /// ‖λ δ‖ of the accepted step.
+    pub step_norm: f64,
+    /// Whether the step was accepted across a change of the frozen data
+    /// whatever its residual.
+    pub discontinuity: bool,
+}
+
 /// Square root of the machine epsilon, the relative size of the
 /// finite-difference step.
 const SQRT_EPS: f64 = 1.4901161193847656e-8;
@@ -180,7 +203,7 @@ impl NewtonKrylov {
     pub fn new(n: usize, params: NewtonParams) -> Self {
         NewtonKrylov {
             params,
-            gmres: Gmres::new(n, params.krylov.restart),
+            gmres: Gmres::new(n, params.krylov.restart, params.krylov.flexible),
             f: vec![0.0; n],
             dx: vec![0.0; n],
             x_trial: vec![0.0; n],
@@ -202,13 +225,13 @@ impl NewtonKrylov {
 
     /// Solves F(x) = 0 from the starting point `x` (overwritten with the
     /// last accepted iterate, also when the tolerance is not reached).
-    /// `on_iteration(k, relative residual)` is called at the start and
-    /// after every accepted step.
+    /// `on_iteration` is called at the start (iteration 0) and after
+    /// every accepted step.
     pub fn solve<P: NonlinearProblem>(
         &mut self,
         problem: &mut P,
         x: &mut [f64],
-        on_iteration: &mut dyn FnMut(usize, f64),
+        on_iteration: &mut dyn FnMut(&IterationReport),
     ) -> Result<NewtonInfo, NewtonError> {
         let n = problem.len();
         if self.f.len() != n {
@@ -227,7 +250,10 @@ impl NewtonKrylov {
         let mut discontinuity_steps = 0;
         history.push(fnorm);
         info.residual = relative(fnorm, reference);
-        on_iteration(0, info.residual);
+        on_iteration(&IterationReport {
+            residual: info.residual,
+            ..Default::default()
+        });
         for k in 1..=params.max_iterations {
             let target = params.tolerance * reference;
             if fnorm <= target {
@@ -261,8 +287,21 @@ impl NewtonKrylov {
                 .gmres
                 .solve(&mut system, &self.f, &mut self.dx, &krylov);
             info.residual_evaluations += system.evaluations;
+            let mut report = IterationReport {
+                iteration: k,
+                forcing: eta,
+                ..Default::default()
+            };
             match solved {
-                Ok(g) => info.krylov_iterations += g.iterations,
+                Ok(g) => {
+                    info.krylov_iterations += g.iterations;
+                    report.krylov_iterations = g.iterations;
+                    report.linear_residual = if g.initial_residual > 0.0 {
+                        g.final_residual / g.initial_residual
+                    } else {
+                        0.0
+                    };
+                }
                 // a Jacobian product left the admissible states: the
                 // restart cycles before it are the step, if any
                 Err(e) if self.dx.iter().all(|d| *d == 0.0) => {
@@ -336,7 +375,10 @@ impl NewtonKrylov {
             reference = problem.residual_reference();
             info.iterations = k;
             info.residual = relative(fnorm, reference);
-            on_iteration(k, info.residual);
+            report.residual = info.residual;
+            report.step_length = lambda;
+            report.step_norm = lambda * norm(&self.dx);
+            on_iteration(&report);
         }
         info.converged = fnorm <= params.tolerance * reference;
         Ok(info)

@@ -81,7 +81,7 @@ fn bratu_converges_quadratically_to_the_lower_branch() {
     };
     let mut residuals = Vec::new();
     let info = NewtonKrylov::new(n, params)
-        .solve(&mut p, &mut x, &mut |_, r| residuals.push(r))
+        .solve(&mut p, &mut x, &mut |r| residuals.push(r.residual))
         .unwrap();
     assert!(info.converged, "{info:?}");
     assert!(info.iterations <= 6, "{info:?} {residuals:?}");
@@ -185,7 +185,7 @@ fn penalty_contact_active_set_settles_in_a_few_newton_iterations() {
         ..Default::default()
     };
     let info = NewtonKrylov::new(n, params)
-        .solve(&mut p, &mut x, &mut |_, _| {})
+        .solve(&mut p, &mut x, &mut |_| {})
         .unwrap();
     assert!(info.converged, "{info:?}");
     assert!(info.iterations <= 25, "{info:?}");

@@ -92,11 +92,21 @@ impl Case {
 /// line and byte offset of the first bad sequence); anything [`parse_case`]
 /// rejects.
 pub fn load_case(path: &Path) -> Result<Case, InputError> {
+    load_case_with(path, None)
+}
+
+/// [`load_case`] with `[solver] nonlinear` set to `nonlinear` whatever the
+/// file says (`fvc run --nonlinear`): the method's defaults apply to the
+/// keys the file does not give.
+pub fn load_case_with(
+    path: &Path,
+    nonlinear: Option<fv_nonlinear::NonlinearMethod>,
+) -> Result<Case, InputError> {
     let bytes = std::fs::read(path)
         .map_err(|e| InputError::new(path, format!("cannot read the case file: {e}")))?;
     let text = String::from_utf8(bytes).map_err(|e| utf8_error(path, e))?;
     let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
-    parse_case(text, path)
+    parse_case_with(text, path, nonlinear)
 }
 
 fn utf8_error(path: &Path, e: std::string::FromUtf8Error) -> InputError {
@@ -129,6 +139,15 @@ fn utf8_error(path: &Path, e: std::string::FromUtf8Error) -> InputError {
 /// Parses and validates case text; `path` names the file in messages and
 /// its directory resolves relative mesh paths.
 pub fn parse_case(text: &str, path: &Path) -> Result<Case, InputError> {
+    parse_case_with(text, path, None)
+}
+
+/// [`parse_case`] with `[solver] nonlinear` overridden ([`load_case_with`]).
+pub fn parse_case_with(
+    text: &str,
+    path: &Path,
+    nonlinear: Option<fv_nonlinear::NonlinearMethod>,
+) -> Result<Case, InputError> {
     let index = LineIndex::new(text);
     let root = match DeTable::parse(text) {
         Ok(root) => root,
@@ -157,7 +176,7 @@ pub fn parse_case(text: &str, path: &Path) -> Result<Case, InputError> {
         line: None,
         table: root.get_ref(),
     };
-    build(&top, source)
+    build(&top, source, nonlinear)
 }
 
 /// Why the pair `spec` cannot share its patch `side` (its master or its
@@ -203,7 +222,11 @@ pub(crate) fn shared_patch_conflict(
     }
 }
 
-fn build(t: &Table<'_>, source: CaseSource) -> Res<Case> {
+fn build(
+    t: &Table<'_>,
+    source: CaseSource,
+    nonlinear: Option<fv_nonlinear::NonlinearMethod>,
+) -> Res<Case> {
     t.deny_unknown(&[
         "title", "analysis", "time", "solver", "body", "contact", "output",
     ])?;
@@ -223,8 +246,8 @@ fn build(t: &Table<'_>, source: CaseSource) -> Res<Case> {
     };
     let solver_defaults = SolverSettings::for_analysis(&analysis, t.get("contact").is_some());
     let solver = match t.get("solver") {
-        Some(a) => settings::solver(&a.node().table()?, &solver_defaults)?,
-        None => solver_defaults,
+        Some(a) => settings::solver(&a.node().table()?, &solver_defaults, nonlinear)?,
+        None => settings::solver_without_table(&solver_defaults, nonlinear),
     };
 
     let body_entry = t.get("body");

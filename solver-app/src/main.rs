@@ -29,12 +29,20 @@ enum Command {
         /// No progress bar: one log line per increment.
         #[arg(long)]
         quiet: bool,
+        /// Solve with this nonlinear method whatever the case's
+        /// `[solver] nonlinear` says (newton-krylov, segregated).
+        #[arg(long, value_parser = parse_method)]
+        nonlinear: Option<fv_nonlinear::NonlinearMethod>,
     },
     /// Validate a case and report its meshes, without solving.
     Check {
         /// The case file (TOML).
         case: PathBuf,
     },
+}
+
+fn parse_method(s: &str) -> Result<fv_nonlinear::NonlinearMethod, String> {
+    fv_nonlinear::NonlinearMethod::from_name(s).map_err(|e| e.to_string())
 }
 
 fn main() -> ExitCode {
@@ -92,6 +100,7 @@ fn main() -> ExitCode {
             output,
             threads,
             quiet,
+            nonlinear,
         } => {
             if let Some(n) = threads {
                 if n == 0 {
@@ -110,7 +119,7 @@ fn main() -> ExitCode {
                     .num_threads(n.min(cores))
                     .build_global();
             }
-            let case = match load_case(&case) {
+            let case = match solver_app::case::load_case_with(&case, nonlinear) {
                 Ok(c) => c,
                 Err(e) => {
                     eprintln!("error: {e}");

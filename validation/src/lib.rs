@@ -8,7 +8,23 @@ pub mod report;
 
 use std::path::Path;
 
-use solver_app::case::{parse_case, Case};
+use solver_app::case::{parse_case_with, Case};
+
+/// The nonlinear method every case of the validation runs with, when the
+/// environment variable `FVC_NONLINEAR` names one (`newton-krylov`,
+/// `segregated`): the suite is run under either method this way.
+pub fn nonlinear_override() -> Option<fv_nonlinear::NonlinearMethod> {
+    let name = std::env::var("FVC_NONLINEAR").ok()?;
+    match fv_nonlinear::NonlinearMethod::from_name(&name) {
+        Ok(m) => Some(m),
+        Err(e) => panic!("FVC_NONLINEAR: {e}"),
+    }
+}
+
+/// [`parse_case_with`] under [`nonlinear_override`].
+pub fn parse_case(text: &str, path: &Path) -> Result<Case, solver_app::case::InputError> {
+    parse_case_with(text, path, nonlinear_override())
+}
 use solver_app::run::{run_case, RunOptions, RunOutcome};
 
 /// Parses a case given as TOML text (relative mesh paths resolve against

@@ -454,7 +454,27 @@ impl SolverSettings {
     }
 }
 
-pub(crate) fn solver(t: &Table<'_>, defaults: &SolverSettings) -> Res<SolverSettings> {
+/// The settings of a case without a `[solver]` table.
+pub(crate) fn solver_without_table(
+    defaults: &SolverSettings,
+    nonlinear: Option<NonlinearMethod>,
+) -> SolverSettings {
+    let mut s = *defaults;
+    if let Some(m) = nonlinear {
+        s.nonlinear = m;
+    }
+    if s.nonlinear == NonlinearMethod::NewtonKrylov {
+        s.max_outer = NEWTON_MAX_ITERATIONS;
+        s.linear = LinearSettings::for_newton();
+    }
+    s
+}
+
+pub(crate) fn solver(
+    t: &Table<'_>,
+    defaults: &SolverSettings,
+    nonlinear_override: Option<NonlinearMethod>,
+) -> Res<SolverSettings> {
     t.deny_unknown(&[
         "nonlinear",
         "tolerance",
@@ -476,6 +496,7 @@ pub(crate) fn solver(t: &Table<'_>, defaults: &SolverSettings) -> Res<SolverSett
             &NonlinearMethod::ALL.map(|m| (m.name(), m)),
         )
     })?;
+    let nonlinear = nonlinear_override.unwrap_or(nonlinear);
     let newton = nonlinear == NonlinearMethod::NewtonKrylov;
     if newton {
         d.max_outer = NEWTON_MAX_ITERATIONS;
@@ -507,12 +528,10 @@ pub(crate) fn solver(t: &Table<'_>, defaults: &SolverSettings) -> Res<SolverSett
                     ));
                 }
             }
-            if table.has("restart") && !newton {
-                if let Some(r) = table.get("restart") {
-                    return Err(r.node().err(
-                        "restart is the GMRES restart length of nonlinear = \"newton-krylov\"; the segregated method has no use for it",
-                    ));
-                }
+            if let (Some(r), false) = (table.get("restart"), newton) {
+                return Err(r.node().err(
+                    "restart is the GMRES restart length of nonlinear = \"newton-krylov\"; the segregated method has no use for it",
+                ));
             }
             s
         }

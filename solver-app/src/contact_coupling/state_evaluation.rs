@@ -21,6 +21,17 @@ use fv_discretise::PatchCondition;
 use fv_mesh::Vector;
 use fv_nonlinear::Frozen;
 
+/// A state in which a contact face penetrates the other surface deeper
+/// than this fraction of its cell's height is refused (Newton's line
+/// search then shortens the step). A penalty traction is a model of
+/// contact for penetrations small against the cells: a Newton step that
+/// ignores a contact it has not yet met can move a surface into the other
+/// body by a large part of a cell, where the faces it pairs with and the
+/// direction of their normals no longer describe the contact, and the
+/// iteration wandered (curved beams: steps of tens of millimetres from a
+/// state 0.5 mm through the other beam).
+const PENETRATION_LIMIT: f64 = 0.5;
+
 /// The contact state of a face, compared between renewals: no pressure,
 /// pressure without friction, sticking, slipping.
 fn face_state(pressure: f64, stick: bool, slip: bool) -> u8 {
@@ -120,6 +131,62 @@ impl ContactSet {
                 ci.unshift_augmented_gaps();
             }
             transmitted_forces(&mut ci.stats, &ci.tractions, &ci.master, &ci.slave, bodies);
+            if self.trace && frozen == Frozen::Renew {
+                eprintln!(
+                    "    contact {}: force {:.6e} pairs {} active {} stick {} slip {} max pen {:.4e} area {:.4e} eps {:.3e}",
+                    ci.slave_name,
+                    ci.stats.normal_force,
+                    ci.pairs.n_pairs(),
+                    ci.stats.n_active,
+                    ci.stats.n_stick,
+                    ci.stats.n_slip,
+                    ci.stats.max_penetration,
+                    ci.stats.contact_area,
+                    ci.law.normal_penalty
+                );
+                let gmin = ci
+                    .tractions
+                    .slave
+                    .gap
+                    .iter()
+                    .copied()
+                    .filter(|g| g.is_finite())
+                    .fold(f64::INFINITY, f64::min);
+                let gmin_m = ci
+                    .tractions
+                    .master
+                    .gap
+                    .iter()
+                    .copied()
+                    .filter(|g| g.is_finite())
+                    .fold(f64::INFINITY, f64::min);
+                let disp =
+                    |side: &ContactSide| side.point_u.iter().map(|u| u.norm()).fold(0.0, f64::max);
+                eprintln!("      min gap slave {gmin:.4e} master {gmin_m:.4e}; max point motion master {:.3e} slave {:.3e}", disp(&ci.master), disp(&ci.slave));
+            }
+            if frozen == Frozen::Renew {
+                for (side, contact) in [
+                    (&ci.master, &ci.tractions.master),
+                    (&ci.slave, &ci.tractions.slave),
+                ] {
+                    let b = &bodies[side.body];
+                    if b.rigid {
+                        continue;
+                    }
+                    let first = b.mesh.patches[side.patch].start;
+                    for (i, &g) in contact.gap.iter().enumerate() {
+                        let height = 2.0 * b.momentum.normal_distance(first + i);
+                        if g < -PENETRATION_LIMIT * height {
+                            return Err(format!(
+                                "contact {}: a face of {} penetrates the other surface by {:.3e}, more than {PENETRATION_LIMIT} of its cell's height {height:.3e}",
+                                ci.slave_name,
+                                if std::ptr::eq(side, &ci.master) { &ci.master_name } else { &ci.slave_name },
+                                -g
+                            ));
+                        }
+                    }
+                }
+            }
             let deformable_pair = ci.deformable_pair;
             for (side, contact) in [
                 (&mut ci.master, &ci.tractions.master),

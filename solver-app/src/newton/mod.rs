@@ -18,10 +18,14 @@ use crate::predictor::PathChange;
 use crate::profile::PhaseTimes;
 use crate::segregated::{unsolved_directions, IncrementInfo, SolveError};
 use fv_discretise::MomentumParams;
-use fv_nonlinear::{GmresParams, NewtonError, NewtonKrylov, NewtonParams};
+use fv_nonlinear::{GmresParams, NewtonError, NewtonKrylov, NewtonParams, NonlinearProblem};
 use layout::StateLayout;
 use preconditioner::StatePreconditioner;
-use residual::{reference_floor, ModelProblem, ResidualWork};
+use residual::{mean_cell_size, reference_floor, ModelProblem, ResidualWork};
+
+/// Halvings of a predicted first iterate that is not admissible before
+/// the increment starts from its beginning instead.
+const START_HALVINGS: usize = 6;
 
 /// Newton solves per increment at most (the first, then one per
 /// multiplier update or force correction).
@@ -41,8 +45,10 @@ pub struct NewtonKrylovSolver {
     last_step: Vec<f64>,
     last_path: Option<PathChange>,
     path: PathChange,
+    /// Workspace of the harmonic start.
+    last_step_source: Vec<f64>,
     retries: u32,
-    length_scale: f64,
+    cell_size: f64,
     reference_floor: f64,
     /// Seconds per phase.
     pub times: PhaseTimes,
@@ -60,6 +66,7 @@ pub fn newton_params(settings: &SolverSettings) -> NewtonParams {
         restart: linear.restart,
         max_iterations: linear.max_iterations,
         tolerance: linear.tolerance,
+        flexible: std::env::var("FVC_NK_INNER").is_ok(),
     };
     p.forcing.max = linear.tolerance;
     p.forcing.initial = p.forcing.initial.min(linear.tolerance);
@@ -75,7 +82,11 @@ impl NewtonKrylovSolver {
         let n = layout.len();
         NewtonKrylovSolver {
             newton: NewtonKrylov::new(n, newton_params(settings)),
-            preconditioner: StatePreconditioner::new(bodies, &layout),
+            preconditioner: StatePreconditioner::new(
+                bodies,
+                &layout,
+                settings.linear.method == crate::case::LinearMethod::Direct,
+            ),
             work: ResidualWork::new(bodies, &layout),
             params: MomentumParams {
                 rhie_chow: settings.rhie_chow,
@@ -85,11 +96,9 @@ impl NewtonKrylovSolver {
             last_step: vec![0.0; n],
             last_path: None,
             path: PathChange::default(),
+            last_step_source: Vec::new(),
             retries: 0,
-            length_scale: bodies
-                .iter()
-                .map(|b| b.extent)
-                .fold(f64::MIN_POSITIVE, f64::max),
+            cell_size: mean_cell_size(bodies),
             reference_floor: reference_floor(bodies),
             layout,
             times: PhaseTimes::default(),
@@ -102,6 +111,94 @@ impl NewtonKrylovSolver {
         self.newton.memory_bytes() + self.preconditioner.memory_bytes() + 8 * 3 * self.x.len()
     }
 
+    /// Number of unknowns of the state.
+    pub fn state_len(&self) -> usize {
+        self.layout.len()
+    }
+
+    /// Prepares the bodies for the increment about to be solved (the
+    /// kinematic faces' elimination, the unsolved directions) and records
+    /// their current state as its start.
+    pub fn begin_increment(&mut self, bodies: &mut [Body]) {
+        for b in bodies.iter_mut().filter(|b| !b.rigid) {
+            b.momentum.unsolved = self.layout.unsolved;
+            b.momentum.prepare_state_function(&b.mesh, &b.geom);
+        }
+        self.work.record_start(bodies, &self.layout);
+    }
+
+    /// The residual F(x) of the increment begun by
+    /// [`Self::begin_increment`], x the change of the state over it.
+    pub fn problem<'a>(
+        &'a mut self,
+        bodies: &'a mut [Body],
+        contacts: &'a mut ContactSet,
+    ) -> ModelProblem<'a> {
+        ModelProblem {
+            bodies,
+            contacts,
+            layout: &self.layout,
+            params: self.params,
+            work: &mut self.work,
+            preconditioner: &mut self.preconditioner,
+            times: &mut self.times,
+            reference: 0.0,
+            changes: 0,
+            cell_size: self.cell_size,
+            reference_floor: self.reference_floor,
+            evaluations: 0,
+            last_refusal: None,
+        }
+    }
+
+    /// The source of the harmonic extension of the step of the prescribed
+    /// values (displacement and normal-displacement faces) from the
+    /// bodies' current boundary values, per node (interleaved); false
+    /// when nothing prescribed moves.
+    fn prescribed_step_source(&self, bodies: &[Body], rhs: &mut [f64]) -> bool {
+        rhs.iter_mut().for_each(|v| *v = 0.0);
+        let mut any = false;
+        let mut column = vec![0.0; 0];
+        for b in bodies.iter().filter(|b| !b.rigid) {
+            for c in 0..3 {
+                if self.layout.unsolved[c] {
+                    continue;
+                }
+                column.clear();
+                column.resize(b.mesh.n_cells, 0.0);
+                any |= b
+                    .momentum
+                    .add_prescribed_step_source(&b.mesh, &b.geom, c, &mut column);
+                for (i, v) in column.iter().enumerate() {
+                    rhs[3 * (b.offset + i) + c] = *v;
+                }
+            }
+        }
+        any
+    }
+
+    /// Shortens the predicted first iterate until the residual can be
+    /// evaluated there (no cell inverted, no contact face deeper than the
+    /// penetration limit): by halves, [`START_HALVINGS`] times, then zero.
+    fn admissible_start(&mut self, bodies: &mut [Body], contacts: &mut ContactSet) {
+        let x0 = self.x.clone();
+        let mut f = vec![0.0; x0.len()];
+        let mut scale = 1.0;
+        for _ in 0..=START_HALVINGS {
+            let x: Vec<f64> = x0.iter().map(|v| v * scale).collect();
+            let mut problem = self.problem(bodies, contacts);
+            if problem
+                .residual(&x, &mut f, fv_nonlinear::Frozen::Renew)
+                .is_ok()
+            {
+                self.x.copy_from_slice(&x);
+                return;
+            }
+            scale *= 0.5;
+        }
+        self.x.iter_mut().for_each(|v| *v = 0.0);
+    }
+
     /// The first iterate: the last increment's change scaled to this
     /// step, or zero.
     fn predict(&mut self) -> bool {
@@ -109,7 +206,7 @@ impl NewtonKrylovSolver {
         let Some(last) = &self.last_path else {
             return false;
         };
-        if self.retries > 0 {
+        if self.retries > 0 || std::env::var("FVC_NK_NOPRED").is_ok() {
             return false;
         }
         let s = self.path.continuation_of(last);
@@ -146,12 +243,39 @@ impl crate::nonlinear_solver::NonlinearSolver for NewtonKrylovSolver {
         contacts: &mut ContactSet,
         on_iteration: &mut dyn FnMut(usize, f64),
     ) -> Result<IncrementInfo, SolveError> {
-        for b in bodies.iter_mut().filter(|b| !b.rigid) {
-            b.momentum.unsolved = self.layout.unsolved;
-            b.momentum.prepare_state_function(&b.mesh, &b.geom);
-        }
-        self.work.record_start(bodies, &self.layout);
+        // the step of the prescribed values, before the first evaluation
+        // sets the boundary values to them
+        let mut source = std::mem::take(&mut self.last_step_source);
+        source.resize(self.x.len(), 0.0);
+        let prescribed_step = self.prescribed_step_source(bodies, &mut source);
+        self.begin_increment(bodies);
         let mut predicted = self.predict();
+        if !predicted && prescribed_step && std::env::var("FVC_NK_NOHARM").is_err() {
+            // no extrapolation to start from: the harmonic extension of
+            // the prescribed step through the bodies (with the contact
+            // springs of the start), as a first iterate that does not put
+            // the whole step into the cells by the prescribed faces
+            let zero = vec![0.0; source.len()];
+            let mut f = vec![0.0; source.len()];
+            let mut problem = self.problem(bodies, contacts);
+            if problem
+                .residual(&zero, &mut f, fv_nonlinear::Frozen::Renew)
+                .is_ok()
+                && problem.prepare_preconditioner(&zero).is_ok()
+            {
+                let mut x0 = vec![0.0; source.len()];
+                if self.preconditioner.solve(&source, &mut x0, 1e-8).is_ok()
+                    && x0.iter().all(|v| v.is_finite())
+                {
+                    self.x.copy_from_slice(&x0);
+                    predicted = true;
+                }
+            }
+        }
+        self.last_step_source = source;
+        if predicted {
+            self.admissible_start(bodies, contacts);
+        }
         let solved = [0, 1, 2].map(|c| !self.layout.unsolved[c]);
         let mut info = IncrementInfo {
             required: self.newton.params.tolerance,
@@ -171,15 +295,29 @@ impl crate::nonlinear_solver::NonlinearSolver for NewtonKrylovSolver {
                 times: &mut self.times,
                 reference: 0.0,
                 changes: 0,
-                length_scale: self.length_scale,
+                cell_size: self.cell_size,
                 reference_floor: self.reference_floor,
                 evaluations: 0,
                 last_refusal: None,
             };
             let done = total.iterations;
-            let result = self.newton.solve(&mut problem, &mut self.x, &mut |k, r| {
-                if k > 0 {
-                    on_iteration(done + k, r)
+            let trace = std::env::var_os("FVC_TRACE").is_some();
+            let result = self.newton.solve(&mut problem, &mut self.x, &mut |r| {
+                if trace {
+                    eprintln!(
+                        "    newton {}: residual {:.3e} eta {:.2e} krylov {} (linear residual {:.2e}) step {:.3e} x {:.3e}{}",
+                        r.iteration,
+                        r.residual,
+                        r.forcing,
+                        r.krylov_iterations,
+                        r.linear_residual,
+                        r.step_length,
+                        r.step_norm,
+                        if r.discontinuity { " discontinuity" } else { "" }
+                    );
+                }
+                if r.iteration > 0 {
+                    on_iteration(done + r.iteration, r.residual)
                 }
             });
             let counts = match &result {
@@ -232,6 +370,17 @@ impl crate::nonlinear_solver::NonlinearSolver for NewtonKrylovSolver {
             }
             info.converged = true;
             break;
+        }
+        if std::env::var("FVC_NK_DEBUG").is_ok() {
+            eprintln!(
+                "DEBUG newton {} krylov {} evals {} inner {} backtracks {} disc {}",
+                total.iterations,
+                total.krylov_iterations,
+                total.residual_evaluations,
+                self.preconditioner.inner_iterations,
+                total.backtracks,
+                total.discontinuity_steps
+            );
         }
         contacts.commit_increment();
         self.last_step.copy_from_slice(&self.x);

@@ -16,7 +16,9 @@
 use super::layout::StateLayout;
 use crate::contact_coupling::ContactSet;
 use crate::model::Body;
-use fv_discretise::{CsrMatrix, FaceSlots, LinearSolverError, PatchCondition, PcgIc0};
+use fv_discretise::{
+    CsrMatrix, DirectMethod, DirectSolver, FaceSlots, LinearSolverError, PatchCondition, PcgIc0,
+};
 use fv_mesh::Vector;
 
 /// Diagonal added to a body that nothing holds in a component (no
@@ -31,11 +33,72 @@ const FLOATING_STABILISATION: f64 = 1e-5;
 /// their first step.
 const TOUCHING_GAP: f64 = 1e-6;
 
-/// One matrix and IC(0) factor per solved component.
-#[derive(Default)]
+/// How the preconditioner matrix of a component is inverted.
+pub enum Factor {
+    /// One IC(0) forward and backward sweep (the default).
+    Ic0(Box<PcgIc0>),
+    /// A sparse Cholesky factorisation (exact; small problems).
+    Direct(Box<DirectSolver>),
+}
+
+impl Factor {
+    fn factorise(&mut self, a: &CsrMatrix) -> Result<(), LinearSolverError> {
+        match self {
+            Factor::Ic0(s) => s.factorise(a),
+            Factor::Direct(s) => s.factorise(a),
+        }
+    }
+
+    /// z = A⁻¹ r to the relative tolerance `tol` (PCG with the IC(0)
+    /// factor, or the direct factor).
+    fn solve(
+        &mut self,
+        a: &CsrMatrix,
+        r: &[f64],
+        z: &mut [f64],
+        tol: f64,
+    ) -> Result<usize, LinearSolverError> {
+        match self {
+            Factor::Ic0(s) => {
+                z.iter_mut().for_each(|v| *v = 0.0);
+                let p = fv_discretise::PcgParams {
+                    tolerance: tol,
+                    max_iterations: 5000,
+                };
+                s.solve(a, r, z, &p).map(|i| i.iterations)
+            }
+            Factor::Direct(s) => s.solve(a, r, z).map(|_| 1),
+        }
+    }
+
+    fn apply(
+        &mut self,
+        a: &CsrMatrix,
+        r: &[f64],
+        z: &mut [f64],
+    ) -> Result<usize, LinearSolverError> {
+        match self {
+            Factor::Ic0(s) => {
+                let (tol, maxit) = inner();
+                if maxit == 0 {
+                    return s.apply_preconditioner(r, z).map(|_| 1);
+                }
+                z.iter_mut().for_each(|v| *v = 0.0);
+                let p = fv_discretise::PcgParams {
+                    tolerance: tol,
+                    max_iterations: maxit,
+                };
+                s.solve(a, r, z, &p).map(|i| i.iterations)
+            }
+            Factor::Direct(s) => s.solve(a, r, z).map(|_| 1),
+        }
+    }
+}
+
+/// One matrix and factor per solved component.
 pub struct StatePreconditioner {
     matrices: Vec<CsrMatrix>,
-    solvers: Vec<PcgIc0>,
+    solvers: Vec<Factor>,
     /// Component → matrix (None: not solved).
     component: [Option<usize>; 3],
     /// Slots of the links (internal faces, then face-node links).
@@ -52,6 +115,8 @@ pub struct StatePreconditioner {
     held: Vec<[bool; 3]>,
     /// Per node, bit c: its body floats in component c (workspace).
     floating: Vec<u8>,
+    /// Inner iterations of the preconditioner applications so far.
+    pub inner_iterations: usize,
     /// Component vectors of `precondition`.
     r: Vec<f64>,
     z: Vec<f64>,
@@ -60,7 +125,7 @@ pub struct StatePreconditioner {
 impl StatePreconditioner {
     /// Builds the pattern of the links: the internal faces of every
     /// deformable body and the link of every face node to its owner cell.
-    pub fn new(bodies: &[Body], layout: &StateLayout) -> Self {
+    pub fn new(bodies: &[Body], layout: &StateLayout, direct: bool) -> Self {
         let mut owner = Vec::new();
         let mut neighbour = Vec::new();
         for b in bodies.iter().filter(|b| !b.rigid) {
@@ -80,7 +145,15 @@ impl StatePreconditioner {
         let n_solved = (0..3).filter(|&c| !layout.unsolved[c]).count().max(1);
         StatePreconditioner {
             matrices: vec![matrix; n_solved],
-            solvers: (0..n_solved).map(|_| PcgIc0::new(layout.n_nodes)).collect(),
+            solvers: (0..n_solved)
+                .map(|_| {
+                    if direct {
+                        Factor::Direct(Box::new(DirectSolver::new(DirectMethod::Cholesky)))
+                    } else {
+                        Factor::Ic0(Box::new(PcgIc0::new(layout.n_nodes)))
+                    }
+                })
+                .collect(),
             component: renumber(component),
             link_coefficient: vec![0.0; owner.len()],
             slots,
@@ -92,6 +165,7 @@ impl StatePreconditioner {
             floating: vec![0; layout.n_nodes],
             r: vec![0.0; layout.n_nodes],
             z: vec![0.0; layout.n_nodes],
+            inner_iterations: 0,
         }
     }
 
@@ -327,6 +401,27 @@ impl StatePreconditioner {
         }
     }
 
+    /// z = P⁻¹ r solved to the relative tolerance `tol` (interleaved
+    /// node-major vectors): the harmonic extension of a boundary step.
+    pub fn solve(&mut self, r: &[f64], z: &mut [f64], tol: f64) -> Result<(), LinearSolverError> {
+        for c in 0..3 {
+            let Some(mi) = self.component[c] else {
+                for zi in z.iter_mut().skip(c).step_by(3) {
+                    *zi = 0.0;
+                }
+                continue;
+            };
+            for (rc, ri) in self.r.iter_mut().zip(r.iter().skip(c).step_by(3)) {
+                *rc = *ri;
+            }
+            self.solvers[mi].solve(&self.matrices[mi], &self.r, &mut self.z, tol)?;
+            for (zi, zc) in z.iter_mut().skip(c).step_by(3).zip(&self.z) {
+                *zi = *zc;
+            }
+        }
+        Ok(())
+    }
+
     /// z = P⁻¹ r (interleaved node-major vectors).
     pub fn apply(&mut self, r: &[f64], z: &mut [f64]) {
         for c in 0..3 {
@@ -339,17 +434,25 @@ impl StatePreconditioner {
             for (rc, ri) in self.r.iter_mut().zip(r.iter().skip(c).step_by(3)) {
                 *rc = *ri;
             }
-            if self.solvers[mi]
-                .apply_preconditioner(&self.r, &mut self.z)
-                .is_err()
-            {
-                self.z.copy_from_slice(&self.r);
+            match self.solvers[mi].apply(&self.matrices[mi], &self.r, &mut self.z) {
+                Ok(k) => self.inner_iterations += k,
+                Err(_) => self.z.copy_from_slice(&self.r),
             }
             for (zi, zc) in z.iter_mut().skip(c).step_by(3).zip(&self.z) {
                 *zi = *zc;
             }
         }
     }
+}
+
+fn inner() -> (f64, usize) {
+    std::env::var("FVC_NK_INNER")
+        .ok()
+        .and_then(|v| {
+            let mut it = v.split(',');
+            Some((it.next()?.parse().ok()?, it.next()?.parse().ok()?))
+        })
+        .unwrap_or((0.1, 0))
 }
 
 /// Component c of a spring's tensor k_n n⊗n + k_t (I − n⊗n), diagonal.

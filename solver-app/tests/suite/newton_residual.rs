@@ -1,0 +1,175 @@
+//! The residual of Newton's method as a function of the state: the same
+//! bits for the same state, affine for a linear problem, and its
+//! finite-difference Jacobian products consistent with it.
+use fv_nonlinear::{Frozen, NonlinearMethod, NonlinearProblem};
+use solver_app::case::parse_case_with;
+use solver_app::newton::NewtonKrylovSolver;
+use solver_app::nonlinear_solver::prepare_contact_conditions;
+use solver_app::run::set_up_with_contacts;
+
+fn seeded(n: usize, seed: u64, scale: f64) -> Vec<f64> {
+    let mut s = seed;
+    (0..n)
+        .map(|_| {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (((s >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0) * scale
+        })
+        .collect()
+}
+
+const CURVED_BEAM: &str = r#"
+title = "beam"
+[analysis]
+strain = "small"
+[time]
+end = 1.0
+steps = 1
+[[body]]
+name = "upper"
+mesh = { generator = "annulus", r_inner = 8.0, r_outer = 10.0, theta0 = 180, theta1 = 360, z0 = 0, z1 = 1, cells = [5, 50, 1] }
+material = { model = "linear-elastic", E = 689.56, nu = 0.32 }
+[body.boundary.start]
+type = "displacement"
+value = [0.2, 0, 0]
+[body.boundary.end]
+type = "displacement"
+value = [0.2, 0, 0]
+[body.boundary.zmin]
+type = "empty"
+[body.boundary.zmax]
+type = "empty"
+"#;
+
+#[test]
+fn small_strain_residual_is_affine_and_deterministic() {
+    let case = parse_case_with(
+        CURVED_BEAM,
+        std::path::Path::new("case.toml"),
+        Some(NonlinearMethod::NewtonKrylov),
+    )
+    .unwrap();
+    let (mut bodies, mut contacts) = set_up_with_contacts(&case).unwrap();
+    prepare_contact_conditions(NonlinearMethod::NewtonKrylov, &contacts, &mut bodies);
+    let mut solver = NewtonKrylovSolver::new(&bodies, &case.solver);
+    for b in bodies.iter_mut() {
+        b.refresh_conditions(1.0);
+    }
+    solver.begin_increment(&mut bodies);
+    let n = solver.state_len();
+    let mut p = solver.problem(&mut bodies, &mut contacts);
+    let x = seeded(n, 1, 0.1);
+    let a = seeded(n, 2, 0.05);
+    let mut f0 = vec![0.0; n];
+    let mut f1 = vec![0.0; n];
+    p.residual(&x, &mut f0, Frozen::Renew).unwrap();
+    p.residual(&x, &mut f1, Frozen::Renew).unwrap();
+    assert_eq!(f0, f1, "two calls at one state differ");
+    let plus: Vec<f64> = x.iter().zip(&a).map(|(x, a)| x + a).collect();
+    let minus: Vec<f64> = x.iter().zip(&a).map(|(x, a)| x - a).collect();
+    let mut fp = vec![0.0; n];
+    let mut fm = vec![0.0; n];
+    p.residual(&plus, &mut fp, Frozen::Renew).unwrap();
+    p.residual(&minus, &mut fm, Frozen::Renew).unwrap();
+    let scale = f0.iter().map(|v| v.abs()).fold(0.0, f64::max);
+    let worst = fp
+        .iter()
+        .zip(&fm)
+        .zip(&f0)
+        .map(|((p, m), o)| (p + m - 2.0 * o).abs())
+        .fold(0.0, f64::max);
+    let worst_at = fp
+        .iter()
+        .zip(&fm)
+        .zip(&f0)
+        .map(|((p, m), o)| (p + m - 2.0 * o).abs())
+        .enumerate()
+        .fold((0, 0.0), |acc, (i, v)| if v > acc.1 { (i, v) } else { acc });
+    eprintln!(
+        "scale {scale:.3e} worst {worst:.3e} at {:?} (n {n})",
+        worst_at
+    );
+    assert!(
+        worst <= 1e-9 * scale,
+        "not affine: {worst:.3e} against {scale:.3e}"
+    );
+}
+
+#[test]
+fn finite_difference_products_match_the_affine_residual() {
+    let case = parse_case_with(
+        CURVED_BEAM,
+        std::path::Path::new("case.toml"),
+        Some(NonlinearMethod::NewtonKrylov),
+    )
+    .unwrap();
+    let (mut bodies, mut contacts) = set_up_with_contacts(&case).unwrap();
+    prepare_contact_conditions(NonlinearMethod::NewtonKrylov, &contacts, &mut bodies);
+    let mut solver = NewtonKrylovSolver::new(&bodies, &case.solver);
+    for b in bodies.iter_mut() {
+        b.refresh_conditions(1.0);
+    }
+    solver.begin_increment(&mut bodies);
+    let n = solver.state_len();
+    let mut p = solver.problem(&mut bodies, &mut contacts);
+    let x = vec![0.0; n];
+    let mut v = seeded(n, 3, 1.0);
+    for (i, vi) in v.iter_mut().enumerate() {
+        if i % 3 == 2 {
+            *vi = 0.0;
+        }
+    }
+    let nv = v.iter().map(|a| a * a).sum::<f64>().sqrt();
+    let mut f0 = vec![0.0; n];
+    p.residual(&x, &mut f0, Frozen::Renew).unwrap();
+    let mut fv = vec![0.0; n];
+    p.residual(&v, &mut fv, Frozen::Keep).unwrap();
+    let exact: Vec<f64> = fv.iter().zip(&f0).map(|(a, b)| a - b).collect();
+    for h in [1e-2, 1e-4, 1e-6, 1e-8] {
+        let xp: Vec<f64> = v.iter().map(|v| h * v / nv).collect();
+        let mut fp = vec![0.0; n];
+        p.residual(&xp, &mut fp, Frozen::Keep).unwrap();
+        let fd: Vec<f64> = fp
+            .iter()
+            .zip(&f0)
+            .map(|(a, b)| (a - b) / (h / nv))
+            .collect();
+        let err = fd
+            .iter()
+            .zip(&exact)
+            .map(|(a, b)| (a - b) * (a - b))
+            .sum::<f64>()
+            .sqrt();
+        let norm = exact.iter().map(|a| a * a).sum::<f64>().sqrt();
+        eprintln!("h {h:.0e}: relative error {:.3e}", err / norm);
+    }
+}
+
+#[test]
+fn probe_exact_newton_step() {
+    let text = CURVED_BEAM.replace("[time]", "[solver]\nlinear = { method = \"direct\", restart = 300, max_iterations = 1000, tolerance = 1e-10 }\n[time]");
+    let case = parse_case_with(
+        &text,
+        std::path::Path::new("case.toml"),
+        Some(NonlinearMethod::NewtonKrylov),
+    )
+    .unwrap();
+    let (mut bodies, mut contacts) = set_up_with_contacts(&case).unwrap();
+    prepare_contact_conditions(NonlinearMethod::NewtonKrylov, &contacts, &mut bodies);
+    let mut solver = NewtonKrylovSolver::new(&bodies, &case.solver);
+    for b in bodies.iter_mut() {
+        b.refresh_conditions(1.0);
+    }
+    solver.begin_increment(&mut bodies);
+    let n = solver.state_len();
+    let params = solver_app::newton::newton_params(&case.solver);
+    let mut nk = fv_nonlinear::NewtonKrylov::new(n, params);
+    let mut p = solver.problem(&mut bodies, &mut contacts);
+    let mut x = vec![0.0; n];
+    let r = nk.solve(&mut p, &mut x, &mut |r| eprintln!("{r:?}"));
+    eprintln!("{r:?}");
+    // the step to the exact solution, checked: F(x) after one step
+    let mut f = vec![0.0; n];
+    p.residual(&x, &mut f, Frozen::Renew).unwrap();
+}

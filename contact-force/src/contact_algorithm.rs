@@ -53,6 +53,12 @@ pub trait ContactAlgorithm: Send {
     /// the gap between two faces is measured with them moved by these.
     /// Empty slices: none (the surfaces as given).
     fn set_face_shifts(&mut self, master: &[fv_mesh::Vector], slave: &[fv_mesh::Vector]);
+
+    /// While `frozen`, the friction of [`ContactAlgorithm::compute`] counts
+    /// the slip of a face entering contact with the share of the last call
+    /// that was not frozen (Newton's Jacobian products about a base point;
+    /// see `IncrementState::share`).
+    fn freeze_friction_shares(&mut self, _frozen: bool) {}
 }
 
 /// The contact algorithms, by case-file name.

@@ -33,6 +33,12 @@ pub(crate) struct IncrementState {
     /// The start gaps hold values (committed, or recorded at the first
     /// call of the first increment).
     start_known: bool,
+    /// The [`contact_share`] of every master and slave face at the last
+    /// call that was not frozen ([`IncrementState::freeze_shares`]).
+    share_master: Vec<Real>,
+    share_slave: Vec<Real>,
+    /// Calls reuse the shares of the last call that was not frozen.
+    shares_frozen: bool,
 }
 
 fn same_size_or_reset(v: &mut Vec<Vector>, n: usize) {
@@ -71,7 +77,45 @@ pub(crate) fn contact_share(start: Real, now: Real) -> Real {
     (-now / (start - now)).clamp(0.0, 1.0)
 }
 
+/// Which surface a face is on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Side {
+    Master,
+    Slave,
+}
+
 impl IncrementState {
+    /// While `frozen`, [`IncrementState::share`] returns the shares of the
+    /// last call that was not frozen (Newton's Jacobian products: the
+    /// share's steep dependence on the closing gap, 1/start, made the
+    /// frictional stick traction jump with the normal motion and Newton
+    /// wander; the residual itself keeps the share of its own state).
+    pub(crate) fn freeze_shares(&mut self, frozen: bool) {
+        self.shares_frozen = frozen;
+    }
+
+    /// [`contact_share`] of face `f` of `side` (start gap `start`,
+    /// smallest gap `now`), or the recorded one while frozen.
+    pub(crate) fn share(&mut self, side: Side, f: usize, start: Real, now: Real) -> Real {
+        let store = match side {
+            Side::Master => &mut self.share_master,
+            Side::Slave => &mut self.share_slave,
+        };
+        if self.shares_frozen {
+            if let Some(&s) = store.get(f) {
+                return s;
+            }
+        }
+        let s = contact_share(start, now);
+        if !self.shares_frozen {
+            if store.len() <= f {
+                store.resize(f + 1, 1.0);
+            }
+            store[f] = s;
+        }
+        s
+    }
+
     /// Takes the current positions as reference where there is none (first
     /// call, or the surfaces changed size) and computes the point increments.
     pub(crate) fn prepare(&mut self, master: &Surface, slave: &Surface) {
@@ -149,9 +193,11 @@ impl IncrementState {
         }
     }
 
-    /// Forgets everything.
+    /// Forgets everything (the freezing of the shares stays).
     pub(crate) fn reset(&mut self) {
+        let frozen = self.shares_frozen;
         *self = IncrementState::default();
+        self.shares_frozen = frozen;
     }
 }
 

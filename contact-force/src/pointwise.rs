@@ -10,7 +10,7 @@ use crate::coulomb_friction::{face_friction, FrictionState, SlipHistory};
 use crate::face_pairs::{FacePairs, PairsTranspose};
 use crate::face_shifts::FaceShifts;
 use crate::ggi::GgiScratch;
-use crate::increment_state::{contact_share, face_mean, IncrementState};
+use crate::increment_state::{face_mean, IncrementState, Side};
 use crate::penalty::{normal_pressure, ContactLaw};
 use crate::segment_to_segment::valid_face;
 use crate::smoothed_master::SmoothedMaster;
@@ -76,7 +76,7 @@ pub struct Pointwise {
     /// Gaps of the points of one slave face with the face shifts.
     face_gaps: Vec<Real>,
     /// Smallest gap at the points of each slave face (+∞: none), for the
-    /// friction's [`contact_share`].
+    /// friction's contact share (`IncrementState::share`).
     min_gaps: Vec<Real>,
     shifts: FaceShifts,
     /// The master's symmetry and wedge planes (point, unit normal): the
@@ -462,7 +462,12 @@ impl ContactAlgorithm for Pointwise {
             if !(p > 0.0) {
                 continue;
             }
-            let share = contact_share(self.state.start_gap_slave[s], self.min_gaps[s]);
+            let share = self.state.share(
+                Side::Slave,
+                s,
+                self.state.start_gap_slave[s],
+                self.min_gaps[s],
+            );
             let own = face_mean(slave, &self.state.du_slave, s) * share;
             let other = self.slave_du_hat[s] * share;
             let hist = if accumulated {
@@ -562,6 +567,10 @@ impl ContactAlgorithm for Pointwise {
 
     fn set_face_shifts(&mut self, master: &[Vector], slave: &[Vector]) {
         self.shifts.set(master, slave);
+    }
+
+    fn freeze_friction_shares(&mut self, frozen: bool) {
+        self.state.freeze_shares(frozen);
     }
 
     fn set_symmetry_planes(&mut self, planes: &[contact_smooth::SymmetryPlane]) {

@@ -8,7 +8,7 @@ use crate::contact_tractions::{ContactStats, ContactTractions};
 use crate::coulomb_friction::{face_friction, SlipHistory};
 use crate::face_pairs::{FacePairs, PairsTranspose};
 use crate::face_shifts::FaceShifts;
-use crate::increment_state::{contact_share, face_mean, IncrementState};
+use crate::increment_state::{face_mean, IncrementState, Side};
 use crate::occluded_volume::central_integral;
 use crate::penalty::ContactLaw;
 use crate::smoothed_master::{SmoothedGap, SmoothedMaster};
@@ -227,7 +227,7 @@ struct Accumulators {
     slave_overlap: Vec<Real>,
     slave_gap: Vec<Real>,
     /// Smallest flat gap at the segment points of each face (+∞: none),
-    /// for the friction's [`contact_share`].
+    /// for the friction's contact share (`IncrementState::share`).
     master_min_gap: Vec<Real>,
     slave_min_gap: Vec<Real>,
 }
@@ -462,7 +462,12 @@ impl SegmentToSegment {
             if !(p > 0.0) {
                 continue;
             }
-            let share = contact_share(st.start_gap_master[m], self.acc.master_min_gap[m]);
+            let share = st.share(
+                Side::Master,
+                m,
+                st.start_gap_master[m],
+                self.acc.master_min_gap[m],
+            );
             let own = face_mean(master, &st.du_master, m) * share;
             let other = loc.interpolate(slave, &st.du_slave) * share;
             let hist = if accumulated {
@@ -513,7 +518,12 @@ impl SegmentToSegment {
                 keep_best(&mut best, locate_in_polygon(m, &sc.slave_raw, &origin));
             }
             let Some(loc) = best else { continue };
-            let share = contact_share(st.start_gap_slave[s], self.acc.slave_min_gap[s]);
+            let share = st.share(
+                Side::Slave,
+                s,
+                st.start_gap_slave[s],
+                self.acc.slave_min_gap[s],
+            );
             let own = face_mean(slave, &st.du_slave, s) * share;
             let other = loc.interpolate(master, &st.du_master) * share;
             let hist = if accumulated {
@@ -584,6 +594,10 @@ impl ContactAlgorithm for SegmentToSegment {
 
     fn set_face_shifts(&mut self, master: &[Vector], slave: &[Vector]) {
         self.shifts.set(master, slave);
+    }
+
+    fn freeze_friction_shares(&mut self, frozen: bool) {
+        self.state.freeze_shares(frozen);
     }
 
     fn set_symmetry_planes(&mut self, planes: &[contact_smooth::SymmetryPlane]) {

@@ -241,6 +241,19 @@ impl BicgstabIlu0 {
         Ok(())
     }
 
+    /// Applies the factorised ILU(0) preconditioner, `z = M⁻¹ r` (one
+    /// forward and one backward sweep), e.g. inside another Krylov method.
+    /// Allocates nothing.
+    pub fn apply_preconditioner(&self, r: &[f64], z: &mut [f64]) -> Result<(), LinearSolverError> {
+        if !self.factorised {
+            return Err(LinearSolverError::NotFactorised);
+        }
+        check_len("r", r.len(), self.n)?;
+        check_len("z", z.len(), self.n)?;
+        self.factor.apply(r, z);
+        Ok(())
+    }
+
     /// Solves `a x = b` by ILU(0)-preconditioned BiCGStab; `x` is the initial guess on input. Allocates nothing.
     ///
     /// `a` must have the factorised size; it may differ in values (and

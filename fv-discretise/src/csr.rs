@@ -820,6 +820,26 @@ impl SplitFactor {
         }
     }
 
+    /// `z = (I + U_b)⁻¹ D⁻¹ (D + L_f)⁻¹ D r`: one forward and one backward
+    /// sweep, the factor's application as a preconditioner (`z` must not
+    /// alias `r`).
+    pub(crate) fn apply(&self, r: &[f64], z: &mut [f64]) {
+        let rd = &self.inv_diag;
+        let n = rd.len();
+        let mut w_prev = 0.0;
+        for i in 0..n {
+            let wi = self.forward_row(i, r[i], z, w_prev) * rd[i];
+            z[i] = wi;
+            w_prev = wi;
+        }
+        let mut z_next = 0.0;
+        for i in (0..n).rev() {
+            let zi = self.backward_row(i, z[i], z, z_next);
+            z[i] = zi;
+            z_next = zi;
+        }
+    }
+
     /// Backward-sweep row `i`: `z_i = w_i − Σ_j U_b,ij z_j`, with `z_next = z[i + 1]` passed in a register.
     ///
     /// # Panics

@@ -75,6 +75,12 @@ impl LeastSquaresGradient {
         &self.owner_coeff
     }
 
+    /// The vector c of every internal face's neighbour: the neighbour's
+    /// gradient gains −c ⊗ (φ_N − φ_P) from face f.
+    pub fn neighbour_coefficients(&self) -> &[Vector] {
+        &self.neighbour_coeff
+    }
+
     /// Gradient of a vector field: `out[P] = Σ c ⊗ (φ_k − φ_P)`, with
     /// `(∇φ)_ij = ∂φ_j/∂x_i`. `boundary` holds the boundary-face values
     /// (index `face − n_internal_faces`).

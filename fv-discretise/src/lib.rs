@@ -18,7 +18,7 @@ pub mod pcg_ic0;
 
 pub use boundary_conditions::{wedge_rotations, LinearisedContact, PatchCondition};
 pub use least_squares_gradient::LeastSquaresGradient;
-pub use solid_momentum::{Inertia, MomentumParams, RhieChowHistory, SolidMomentum};
+pub use solid_momentum::{Inertia, MomentumParams, RhieChowHistory, SolidMomentum, StateNode};
 pub use stress_law::{current_area_vector, StressLaw};
 
 pub use bicgstab_ilu0::{BicgstabIlu0, BicgstabParams};

@@ -292,21 +292,7 @@ impl PcgIc0 {
         }
         check_len("r", r.len(), self.n)?;
         check_len("z", z.len(), self.n)?;
-        let fac = &self.factor;
-        let rd = fac.inv_diag();
-        let mut w_prev = 0.0;
-        for i in 0..self.n {
-            let t = fac.forward_row(i, r[i], z, w_prev);
-            let wi = t * rd[i];
-            z[i] = wi;
-            w_prev = wi;
-        }
-        let mut z_next = 0.0;
-        for i in (0..self.n).rev() {
-            let zi = fac.backward_row(i, z[i], z, z_next);
-            z[i] = zi;
-            z_next = zi;
-        }
+        self.factor.apply(r, z);
         Ok(())
     }
 

@@ -39,8 +39,10 @@
 //!
 //! With inertia (3.11) the cell balance gains −m_P ü_P (backward Euler, the
 //! mass m_P = ρ_P Ω_P conserved) and the matrix diagonal m_P/Δt².
+mod jacobian;
 mod state_function;
 
+pub use jacobian::StateNode;
 pub use state_function::KinematicFaces;
 
 use crate::stress_law::current_area_vector;
@@ -254,6 +256,8 @@ pub struct SolidMomentum {
     /// Σ_f |force through f| of every cell at the last residual evaluation
     /// (workspace of [`Self::compute_residual_with_face_rows`]).
     force_scale: Vec<f64>,
+    /// See [`Self::take_inverted_face_point`].
+    inverted_face_point: std::cell::Cell<Option<usize>>,
 }
 
 /// Wedge face f, rotation `r` from the mid-plane onto its plane, unit
@@ -349,6 +353,7 @@ impl SolidMomentum {
             rhie_chow_override: None,
             kinematic: KinematicFaces::default(),
             force_scale: Vec::new(),
+            inverted_face_point: std::cell::Cell::new(None),
         };
         s.update_geometry(mesh, geom);
         s
@@ -1027,9 +1032,25 @@ impl SolidMomentum {
     fn sigma_hat_at(&self, o: usize, grad: &Tensor) -> Tensor {
         match self.law.point_stress(o, grad) {
             Some((_, h)) => h,
-            None if self.law.is_updated_lagrangian() => self.sigma_hat[o],
-            None => self.sigma[o],
+            None => {
+                if self.inverted_face_point.get().is_none() {
+                    self.inverted_face_point.set(Some(o));
+                }
+                if self.law.is_updated_lagrangian() {
+                    self.sigma_hat[o]
+                } else {
+                    self.sigma[o]
+                }
+            }
         }
+    }
+
+    /// The owner cell of the first boundary face whose face gradient
+    /// inverted its point (det f ≤ 0) since the last call, its stress then
+    /// taken from the cell: the segregated iteration passes through such
+    /// iterates, the state function of Newton's method refuses them.
+    pub fn take_inverted_face_point(&self) -> Option<usize> {
+        self.inverted_face_point.take()
     }
 
     /// Computes the force residual F_P of every cell and the force through

@@ -37,6 +37,10 @@ pub struct NewtonParams {
     pub forcing: ForcingParams,
     /// Line search.
     pub line_search: LineSearchParams,
+    /// The problem may keep its preconditioner for the next Newton step
+    /// when the last linear solve took at most this many Krylov
+    /// iterations ([`NonlinearProblem::prepare_preconditioner`]).
+    pub reuse_preconditioner_below: usize,
 }
 
 impl Default for NewtonParams {
@@ -52,6 +56,7 @@ impl Default for NewtonParams {
             },
             forcing: ForcingParams::default(),
             line_search: LineSearchParams::default(),
+            reuse_preconditioner_below: 5,
         }
     }
 }
@@ -243,11 +248,14 @@ impl NewtonKrylov {
         problem
             .residual(x, &mut self.f, Frozen::Renew)
             .map_err(NewtonError::Start)?;
+        problem.accept();
         let mut fnorm = norm(&self.f);
         let mut reference = problem.residual_reference();
         let mut forcing = Forcing::new(params.forcing);
         let mut history = NonMonotone::new(params.line_search.window);
         let mut discontinuity_steps = 0;
+        // Krylov iterations of the previous step (none before the first)
+        let mut last_krylov: Option<usize> = None;
         history.push(fnorm);
         info.residual = relative(fnorm, reference);
         on_iteration(&IterationReport {
@@ -260,7 +268,8 @@ impl NewtonKrylov {
                 info.converged = true;
                 return Ok(info);
             }
-            if let Err(e) = problem.prepare_preconditioner(x) {
+            let may_reuse = last_krylov.is_some_and(|k| k <= params.reuse_preconditioner_below);
+            if let Err(e) = problem.prepare_preconditioner(x, may_reuse) {
                 return Err(NewtonError::Preconditioner {
                     iteration: k,
                     reason: e.0,
@@ -292,8 +301,10 @@ impl NewtonKrylov {
                 forcing: eta,
                 ..Default::default()
             };
+            last_krylov = None;
             match solved {
                 Ok(g) => {
+                    last_krylov = Some(g.iterations);
                     info.krylov_iterations += g.iterations;
                     report.krylov_iterations = g.iterations;
                     report.linear_residual = if g.initial_residual > 0.0 {
@@ -314,6 +325,16 @@ impl NewtonKrylov {
                     });
                 }
                 Err(_) => {}
+            }
+            if std::env::var_os("FVC_NK_STEPDEBUG").is_some() {
+                let (mut imax, mut vmax) = (0, 0.0f64);
+                for (i, d) in self.dx.iter().enumerate() {
+                    if d.abs() > vmax {
+                        vmax = d.abs();
+                        imax = i;
+                    }
+                }
+                eprintln!("      step max |dx| {vmax:.3e} at entry {imax} (node {}, comp {}), |F| {fnorm:.3e}, F there {:.3e}", imax / 3, imax % 3, self.f[imax]);
             }
             // line search along dx
             let mut lambda = 1.0;
@@ -369,6 +390,7 @@ impl NewtonKrylov {
                     info,
                 });
             }
+            problem.accept();
             x.copy_from_slice(&self.x_trial);
             std::mem::swap(&mut self.f, &mut self.f_trial);
             history.push(fnorm);

@@ -45,8 +45,11 @@ pub trait NonlinearProblem {
     fn typical_size(&self) -> f64;
 
     /// Sets up the preconditioner about the base point `x` (after its
-    /// residual was evaluated with [`Frozen::Renew`]).
-    fn prepare_preconditioner(&mut self, x: &[f64]) -> Result<(), Inadmissible>;
+    /// residual was evaluated with [`Frozen::Renew`]). With `may_reuse`
+    /// the last one is still good (the previous linear solve needed few
+    /// Krylov iterations): a problem whose preconditioner is costly to
+    /// build may keep it.
+    fn prepare_preconditioner(&mut self, x: &[f64], may_reuse: bool) -> Result<(), Inadmissible>;
 
     /// z = P⁻¹ r, P ≈ −J (the preconditioner approximates the *negative*
     /// Jacobian, as the segregated operator does: F(x + δ) ≈ F(x) − P δ).
@@ -60,6 +63,11 @@ pub trait NonlinearProblem {
     fn changes_at_last_renewal(&self) -> usize {
         0
     }
+
+    /// The last point evaluated with [`Frozen::Renew`] is the new base
+    /// point of the iteration (the start, or a step the line search
+    /// accepted).
+    fn accept(&mut self) {}
 
     /// Components of the unknowns that are held fixed (their residual is
     /// zero by construction); `None` when all are free. Used only to keep

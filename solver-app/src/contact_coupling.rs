@@ -569,6 +569,8 @@ pub struct ContactSet {
     /// `FVC_TRACE=2`: print the contact statistics of every update (read
     /// once, not per outer iteration).
     trace: bool,
+    /// See [`ContactSet::deepest_penetration`].
+    deepest_penetration: f64,
 }
 
 fn side(
@@ -859,6 +861,7 @@ impl ContactSet {
             times: Default::default(),
             newly_augmented: Vec::new(),
             trace: std::env::var_os("FVC_TRACE").is_some_and(|v| v == "2"),
+            deepest_penetration: 0.0,
         };
         for (ci, c) in case.contacts.iter().enumerate() {
             let key = format!("contact[{ci}]");

@@ -28,13 +28,13 @@ type Matrix9 = SMatrix<f64, 9, 9>;
 /// A boundary face whose value follows from its owner's:
 /// Δu_b = M (Δu_P + Gᵀ w) + c.
 #[derive(Debug, Clone, Copy)]
-struct KinematicFace {
+pub(super) struct KinematicFace {
     /// Boundary face index (face − n_internal_faces).
-    b: u32,
-    owner: u32,
-    m: Tensor,
-    w: Vector,
-    c: Vector,
+    pub(super) b: u32,
+    pub(super) owner: u32,
+    pub(super) m: Tensor,
+    pub(super) w: Vector,
+    pub(super) c: Vector,
 }
 
 /// The kinematic faces of a body (symmetry, normal displacement, wedge)
@@ -43,12 +43,12 @@ struct KinematicFace {
 /// ([`SolidMomentum::prepare_state_function`]).
 #[derive(Debug, Clone, Default)]
 pub struct KinematicFaces {
-    faces: Vec<KinematicFace>,
+    pub(super) faces: Vec<KinematicFace>,
     /// Per cell: its slot in `inverses`, or `u32::MAX`.
     cell_slot: Vec<u32>,
-    inverses: Vec<Matrix9>,
+    pub(super) inverses: Vec<Matrix9>,
     /// The cells of `inverses`, in slot order.
-    cells: Vec<u32>,
+    pub(super) cells: Vec<u32>,
 }
 
 /// Column-major vec of a 3 × 3 tensor (index i + 3j for G_ij).

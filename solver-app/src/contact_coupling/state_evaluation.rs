@@ -21,17 +21,6 @@ use fv_discretise::PatchCondition;
 use fv_mesh::Vector;
 use fv_nonlinear::Frozen;
 
-/// A state in which a contact face penetrates the other surface deeper
-/// than this fraction of its cell's height is refused (Newton's line
-/// search then shortens the step). A penalty traction is a model of
-/// contact for penetrations small against the cells: a Newton step that
-/// ignores a contact it has not yet met can move a surface into the other
-/// body by a large part of a cell, where the faces it pairs with and the
-/// direction of their normals no longer describe the contact, and the
-/// iteration wandered (curved beams: steps of tens of millimetres from a
-/// state 0.5 mm through the other beam).
-const PENETRATION_LIMIT: f64 = 0.5;
-
 /// The contact state of a face, compared between renewals: no pressure,
 /// pressure without friction, sticking, slipping.
 fn face_state(pressure: f64, stick: bool, slip: bool) -> u8 {
@@ -61,6 +50,9 @@ impl ContactSet {
     /// changed their contact state (open, pressed, sticking, slipping)
     /// against the last renewal.
     pub fn evaluate_state(&mut self, bodies: &mut [Body], frozen: Frozen) -> Result<usize, String> {
+        if frozen == Frozen::Renew {
+            self.deepest_penetration = 0.0;
+        }
         // a patch in several pairs sums their tractions
         for ci in &self.interfaces {
             for side in [&ci.master, &ci.slave].into_iter().filter(|s| s.shared) {
@@ -117,6 +109,7 @@ impl ContactSet {
                 }
                 ci.penalty_localised = true;
             }
+            ci.algorithm.freeze_friction_shares(frozen == Frozen::Keep);
             ci.stats = ci
                 .algorithm
                 .compute(
@@ -176,13 +169,8 @@ impl ContactSet {
                     let first = b.mesh.patches[side.patch].start;
                     for (i, &g) in contact.gap.iter().enumerate() {
                         let height = 2.0 * b.momentum.normal_distance(first + i);
-                        if g < -PENETRATION_LIMIT * height {
-                            return Err(format!(
-                                "contact {}: a face of {} penetrates the other surface by {:.3e}, more than {PENETRATION_LIMIT} of its cell's height {height:.3e}",
-                                ci.slave_name,
-                                if std::ptr::eq(side, &ci.master) { &ci.master_name } else { &ci.slave_name },
-                                -g
-                            ));
+                        if g < 0.0 && height > 0.0 {
+                            self.deepest_penetration = self.deepest_penetration.max(-g / height);
                         }
                     }
                 }
@@ -234,6 +222,15 @@ impl ContactSet {
             self.times.lap(Phase::ContactForce, force_start);
         }
         Ok(changes)
+    }
+}
+
+impl ContactSet {
+    /// The deepest penetration of a deformable contact face at the last
+    /// renewal ([`ContactSet::evaluate_state`]), as a fraction of its
+    /// cell's height (2 × the normal distance of its owner's centre).
+    pub fn deepest_penetration(&self) -> f64 {
+        self.deepest_penetration
     }
 }
 

@@ -7,6 +7,7 @@
 //! multipliers are updated between Newton solves (each solve's
 //! multipliers frozen), and force-controlled patches correct their
 //! displacement between them (Algorithm 1), until neither changes.
+pub mod jacobian;
 pub mod layout;
 pub mod preconditioner;
 pub mod residual;
@@ -19,9 +20,14 @@ use crate::profile::PhaseTimes;
 use crate::segregated::{unsolved_directions, IncrementInfo, SolveError};
 use fv_discretise::MomentumParams;
 use fv_nonlinear::{GmresParams, NewtonError, NewtonKrylov, NewtonParams, NonlinearProblem};
+use jacobian::AssembledJacobian;
 use layout::StateLayout;
 use preconditioner::StatePreconditioner;
 use residual::{mean_cell_size, reference_floor, ModelProblem, ResidualWork};
+
+/// The fraction of a step by which the conditions move to measure the
+/// start state's response ([`NewtonKrylovSolver::linear_predictor`]).
+const PREDICTOR_FRACTION: f64 = 1e-3;
 
 /// Halvings of a predicted first iterate that is not admissible before
 /// the increment starts from its beginning instead.
@@ -36,6 +42,8 @@ pub struct NewtonKrylovSolver {
     newton: NewtonKrylov,
     layout: StateLayout,
     preconditioner: StatePreconditioner,
+    /// The assembled Jacobian, when it preconditions.
+    jacobian: Option<AssembledJacobian>,
     work: ResidualWork,
     params: MomentumParams,
     /// The state of the current increment.
@@ -47,6 +55,8 @@ pub struct NewtonKrylovSolver {
     path: PathChange,
     /// Workspace of the harmonic start.
     last_step_source: Vec<f64>,
+    /// Start and end time of the step being solved.
+    step_times: (f64, f64),
     retries: u32,
     cell_size: f64,
     reference_floor: f64,
@@ -87,6 +97,8 @@ impl NewtonKrylovSolver {
                 &layout,
                 settings.linear.method == crate::case::LinearMethod::Direct,
             ),
+            jacobian: (std::env::var("FVC_NK_PC").as_deref() == Ok("jacobian"))
+                .then(|| AssembledJacobian::new(bodies, &layout)),
             work: ResidualWork::new(bodies, &layout),
             params: MomentumParams {
                 rhie_chow: settings.rhie_chow,
@@ -97,6 +109,7 @@ impl NewtonKrylovSolver {
             last_path: None,
             path: PathChange::default(),
             last_step_source: Vec::new(),
+            step_times: (0.0, 0.0),
             retries: 0,
             cell_size: mean_cell_size(bodies),
             reference_floor: reference_floor(bodies),
@@ -109,6 +122,11 @@ impl NewtonKrylovSolver {
     /// preconditioner).
     pub fn memory_bytes(&self) -> usize {
         self.newton.memory_bytes() + self.preconditioner.memory_bytes() + 8 * 3 * self.x.len()
+    }
+
+    /// The numbering of the state.
+    pub fn layout(&self) -> &StateLayout {
+        &self.layout
     }
 
     /// Number of unknowns of the state.
@@ -141,6 +159,7 @@ impl NewtonKrylovSolver {
             params: self.params,
             work: &mut self.work,
             preconditioner: &mut self.preconditioner,
+            jacobian: self.jacobian.as_mut(),
             times: &mut self.times,
             reference: 0.0,
             changes: 0,
@@ -148,6 +167,7 @@ impl NewtonKrylovSolver {
             reference_floor: self.reference_floor,
             evaluations: 0,
             last_refusal: None,
+            penetration: (0.0, None),
         }
     }
 
@@ -177,25 +197,100 @@ impl NewtonKrylovSolver {
         any
     }
 
+    /// The first iterate of Newton's method: the linear response of the
+    /// start state to the step of the prescribed values and loads, as
+    /// finite-element codes take it, x₀ = −J⁻¹ ∂F/∂t Δt: the change of the
+    /// residual at the start state when the conditions move by a small
+    /// fraction [`PREDICTOR_FRACTION`] of the step (so that what the step
+    /// prescribes enters through the start's tangent, not through a jump
+    /// of the prescribed faces away from their cells that may throw the
+    /// faces' points far into a plastic or inverted state), solved with the
+    /// preconditioner assembled at the start (the segregated operator: the
+    /// harmonic extension of the step; the assembled Jacobian: the tangent
+    /// step), the contact springs of the start included. False when a
+    /// stage fails.
+    fn linear_predictor(&mut self, bodies: &mut [Body], contacts: &mut ContactSet) -> bool {
+        let (t0, t1) = self.step_times;
+        if !(t1 > t0) {
+            return false;
+        }
+        let th = t0 + PREDICTOR_FRACTION * (t1 - t0);
+        let n = self.x.len();
+        let zero = vec![0.0; n];
+        let mut f0 = vec![0.0; n];
+        let mut fh = vec![0.0; n];
+        for b in bodies.iter_mut() {
+            b.refresh_conditions(t0);
+        }
+        let ok = {
+            let mut problem = self.problem(bodies, contacts);
+            problem
+                .residual(&zero, &mut f0, fv_nonlinear::Frozen::Renew)
+                .is_ok()
+                && problem.prepare_preconditioner(&zero, false).is_ok()
+        };
+        for b in bodies.iter_mut() {
+            b.refresh_conditions(th);
+        }
+        let ok = ok && {
+            let mut problem = self.problem(bodies, contacts);
+            problem
+                .residual(&zero, &mut fh, fv_nonlinear::Frozen::Keep)
+                .is_ok()
+        };
+        for b in bodies.iter_mut() {
+            b.refresh_conditions(t1);
+        }
+        if !ok {
+            return false;
+        }
+        let rhs: Vec<f64> = fh
+            .iter()
+            .zip(&f0)
+            .map(|(a, b)| (a - b) / PREDICTOR_FRACTION)
+            .collect();
+        let mut x0 = vec![0.0; n];
+        self.problem(bodies, contacts).precondition(&rhs, &mut x0);
+        if !x0.iter().all(|v| v.is_finite()) || x0.iter().all(|v| *v == 0.0) {
+            return false;
+        }
+        self.x.copy_from_slice(&x0);
+        true
+    }
+
     /// Shortens the predicted first iterate until the residual can be
     /// evaluated there (no cell inverted, no contact face deeper than the
     /// penetration limit): by halves, [`START_HALVINGS`] times, then zero.
     fn admissible_start(&mut self, bodies: &mut [Body], contacts: &mut ContactSet) {
         let x0 = self.x.clone();
         let mut f = vec![0.0; x0.len()];
+        let zero = vec![0.0; x0.len()];
+        let mut problem = self.problem(bodies, contacts);
+        // the unmoved state is the reference of the penetration a start
+        // may add
+        if problem
+            .residual(&zero, &mut f, fv_nonlinear::Frozen::Renew)
+            .is_ok()
+        {
+            problem.accept();
+        }
         let mut scale = 1.0;
+        let mut x = x0.clone();
         for _ in 0..=START_HALVINGS {
-            let x: Vec<f64> = x0.iter().map(|v| v * scale).collect();
-            let mut problem = self.problem(bodies, contacts);
+            for (x, v) in x.iter_mut().zip(&x0) {
+                *x = v * scale;
+            }
             if problem
                 .residual(&x, &mut f, fv_nonlinear::Frozen::Renew)
                 .is_ok()
             {
+                drop(problem);
                 self.x.copy_from_slice(&x);
                 return;
             }
             scale *= 0.5;
         }
+        drop(problem);
         self.x.iter_mut().for_each(|v| *v = 0.0);
     }
 
@@ -229,8 +324,9 @@ impl crate::nonlinear_solver::NonlinearSolver for NewtonKrylovSolver {
         Ok(())
     }
 
-    fn set_step(&mut self, path: &PathChange, _t0: f64, _t1: f64) {
+    fn set_step(&mut self, path: &PathChange, t0: f64, t1: f64) {
         self.path.clone_from(path);
+        self.step_times = (t0, t1);
     }
 
     fn set_divergence_retries(&mut self, retries: u32) {
@@ -249,7 +345,11 @@ impl crate::nonlinear_solver::NonlinearSolver for NewtonKrylovSolver {
         source.resize(self.x.len(), 0.0);
         let prescribed_step = self.prescribed_step_source(bodies, &mut source);
         self.begin_increment(bodies);
-        let mut predicted = self.predict();
+        let mut predicted = match std::env::var("FVC_NK_PRED").as_deref() {
+            Ok("extrapolate") => self.predict(),
+            Ok("none") => false,
+            _ => self.linear_predictor(bodies, contacts),
+        };
         if !predicted && prescribed_step && std::env::var("FVC_NK_NOHARM").is_err() {
             // no extrapolation to start from: the harmonic extension of
             // the prescribed step through the bodies (with the contact
@@ -261,7 +361,7 @@ impl crate::nonlinear_solver::NonlinearSolver for NewtonKrylovSolver {
             if problem
                 .residual(&zero, &mut f, fv_nonlinear::Frozen::Renew)
                 .is_ok()
-                && problem.prepare_preconditioner(&zero).is_ok()
+                && problem.prepare_preconditioner(&zero, false).is_ok()
             {
                 let mut x0 = vec![0.0; source.len()];
                 if self.preconditioner.solve(&source, &mut x0, 1e-8).is_ok()
@@ -292,6 +392,7 @@ impl crate::nonlinear_solver::NonlinearSolver for NewtonKrylovSolver {
                 params: self.params,
                 work: &mut self.work,
                 preconditioner: &mut self.preconditioner,
+                jacobian: self.jacobian.as_mut(),
                 times: &mut self.times,
                 reference: 0.0,
                 changes: 0,
@@ -299,6 +400,7 @@ impl crate::nonlinear_solver::NonlinearSolver for NewtonKrylovSolver {
                 reference_floor: self.reference_floor,
                 evaluations: 0,
                 last_refusal: None,
+                penetration: (0.0, None),
             };
             let done = total.iterations;
             let trace = std::env::var_os("FVC_TRACE").is_some();

@@ -5,6 +5,7 @@
 //! Rhie–Chow term, boundary conditions and contact tractions as the
 //! segregated method, with the boundary values and contact tractions
 //! computed from x inside the call.
+use super::jacobian::AssembledJacobian;
 use super::layout::StateLayout;
 use super::preconditioner::StatePreconditioner;
 use crate::contact_coupling::ContactSet;
@@ -14,6 +15,22 @@ use fv_discretise::MomentumParams;
 use fv_mesh::Vector;
 use fv_nonlinear::{Frozen, Inadmissible, NonlinearProblem};
 use std::time::Instant;
+
+/// A step may deepen the deepest contact penetration to this fraction of
+/// the face's cell height, or to [`PENETRATION_GROWTH`] times the
+/// penetration of the point it starts from if that is more; a trial point
+/// beyond is refused and the line search shortens the step. A penalty
+/// traction is a model of contact for penetrations small against the
+/// cells: a Newton step that ignores a contact it has not met yet can move
+/// a surface into the other body by a large part of a cell, where the
+/// pairs and the direction of their normals no longer describe the
+/// contact, and the iteration wandered (curved beams: steps of tens of
+/// millimetres from a state 0.5 mm through the other beam). The start of an
+/// increment is not refused: a rigid body moved by its prescribed motion
+/// can put it deep into the other surface.
+const PENETRATION_LIMIT: f64 = 0.5;
+/// See [`PENETRATION_LIMIT`].
+const PENETRATION_GROWTH: f64 = 1.5;
 
 /// The force scale is at least this fraction of K |Γ| L summed as the
 /// residual reference is (a state at rest, with nothing loaded).
@@ -78,8 +95,11 @@ pub struct ModelProblem<'a> {
     pub params: MomentumParams,
     /// Workspaces and the start of the increment.
     pub work: &'a mut ResidualWork,
-    /// The preconditioner.
+    /// The segregated operator with the contact springs (the
+    /// preconditioner when there is no assembled Jacobian).
     pub preconditioner: &'a mut StatePreconditioner,
+    /// The assembled Jacobian, when it preconditions.
+    pub jacobian: Option<&'a mut AssembledJacobian>,
     /// Seconds per phase.
     pub times: &'a mut PhaseTimes,
     /// Force scale of the last renewed evaluation.
@@ -101,6 +121,10 @@ pub struct ModelProblem<'a> {
     pub evaluations: usize,
     /// Why the last evaluation was refused, if it was.
     pub last_refusal: Option<String>,
+    /// Deepest contact penetration (fraction of the cell height) of the
+    /// last renewal, and of the accepted base point (`None` before the
+    /// first).
+    pub penetration: (f64, Option<f64>),
 }
 
 /// Mean distance between neighbouring cell centres of the deformable bodies.
@@ -165,6 +189,7 @@ impl ModelProblem<'_> {
         }
         let t1 = self.times.lap(Phase::BoundaryValues, t0);
         for b in self.bodies.iter_mut().filter(|b| !b.rigid) {
+            b.momentum.take_inverted_face_point();
             if let Some((cell, jacobian)) = b.momentum.update_stress() {
                 return Err(Inadmissible(format!(
                     "body '{}': cell {cell}: relative Jacobian det f = {jacobian:.3e} is not positive",
@@ -180,6 +205,16 @@ impl ModelProblem<'_> {
                 .map_err(Inadmissible)?;
             if frozen == Frozen::Renew {
                 self.changes = changes;
+                let deepest = self.contacts.deepest_penetration();
+                self.penetration.0 = deepest;
+                if let Some(base) = self.penetration.1 {
+                    let allowed = PENETRATION_LIMIT.max(PENETRATION_GROWTH * base);
+                    if deepest > allowed {
+                        return Err(Inadmissible(format!(
+                            "a contact face penetrates the other surface by {deepest:.3} of its cell's height, more than the step may deepen it to ({allowed:.3})"
+                        )));
+                    }
+                }
             }
         }
         let t2 = Instant::now();
@@ -254,19 +289,41 @@ impl NonlinearProblem for ModelProblem<'_> {
         self.changes
     }
 
-    fn prepare_preconditioner(&mut self, _x: &[f64]) -> Result<(), Inadmissible> {
+    fn accept(&mut self) {
+        self.penetration.1 = Some(self.penetration.0);
+    }
+
+    fn prepare_preconditioner(&mut self, _x: &[f64], may_reuse: bool) -> Result<(), Inadmissible> {
         let t = Instant::now();
-        let r = self
-            .preconditioner
-            .assemble(self.bodies, self.contacts, self.layout)
-            .map_err(|e| Inadmissible(e.to_string()));
+        let r = match self.jacobian.as_deref_mut() {
+            // the assembled Jacobian is costly to factorise: kept while it
+            // serves (an older Jacobian of the same increment still
+            // preconditions the products of the current one)
+            Some(j) if may_reuse && j.is_factorised() => Ok(()),
+            Some(j) => j.assemble(self.bodies, self.contacts, self.layout, &self.params),
+            None => self
+                .preconditioner
+                .assemble(self.bodies, self.contacts, self.layout),
+        }
+        .map_err(|e| Inadmissible(e.to_string()));
         self.times.lap(Phase::MatrixAssembly, t);
         r
     }
 
     fn precondition(&mut self, r: &[f64], z: &mut [f64]) {
         let t = Instant::now();
-        self.preconditioner.apply(r, z);
+        let ok = match self.jacobian.as_deref_mut() {
+            Some(j) => j.apply(r, z).is_ok(),
+            None => {
+                self.preconditioner.apply(r, z);
+                true
+            }
+        };
+        if !ok || !z.iter().all(|v| v.is_finite()) {
+            // a singular factor (a body that nothing holds yet): the
+            // identity rather than a non-finite direction
+            z.copy_from_slice(r);
+        }
         self.times.lap(Phase::LinearSolve, t);
     }
 }

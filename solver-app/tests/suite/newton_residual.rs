@@ -173,3 +173,142 @@ fn probe_exact_newton_step() {
     let mut f = vec![0.0; n];
     p.residual(&x, &mut f, Frozen::Renew).unwrap();
 }
+
+/// The assembled −J against finite differences of the residual, at a
+/// random state of the case, relative error of the product (the material
+/// tangents are themselves finite differences: about 1e-6).
+fn assembled_against_products(text: &str, seed: u64, x_scale: f64) -> f64 {
+    let case = parse_case_with(
+        text,
+        std::path::Path::new("case.toml"),
+        Some(NonlinearMethod::NewtonKrylov),
+    )
+    .unwrap();
+    let (mut bodies, mut contacts) = set_up_with_contacts(&case).unwrap();
+    prepare_contact_conditions(NonlinearMethod::NewtonKrylov, &contacts, &mut bodies);
+    let mut solver = NewtonKrylovSolver::new(&bodies, &case.solver);
+    for b in bodies.iter_mut() {
+        b.refresh_conditions(case.time.time_at(1));
+    }
+    solver.begin_increment(&mut bodies);
+    let n = solver.state_len();
+    let layout = solver.layout().clone();
+    let mut jac = solver_app::newton::jacobian::AssembledJacobian::new(&bodies, &layout);
+    let mut p = solver.problem(&mut bodies, &mut contacts);
+    p.jacobian = Some(&mut jac);
+    let mut x = seeded(n, seed, x_scale);
+    let mut v = seeded(n, seed + 1, 1.0);
+    for (c, &off) in layout.unsolved.iter().enumerate() {
+        if off {
+            x.iter_mut().skip(c).step_by(3).for_each(|a| *a = 0.0);
+            v.iter_mut().skip(c).step_by(3).for_each(|a| *a = 0.0);
+        }
+    }
+    let mut f0 = vec![0.0; n];
+    p.residual(&x, &mut f0, Frozen::Renew).unwrap();
+    p.prepare_preconditioner(&x, false).unwrap();
+    let nv = v.iter().map(|a| a * a).sum::<f64>().sqrt();
+    let h = 1e-7 * x_scale.max(1e-3) / nv * (n as f64).sqrt();
+    let xp: Vec<f64> = x.iter().zip(&v).map(|(x, v)| x + h * v).collect();
+    let mut fp = vec![0.0; n];
+    p.residual(&xp, &mut fp, Frozen::Keep).unwrap();
+    let fd: Vec<f64> = fp.iter().zip(&f0).map(|(a, b)| -(a - b) / h).collect();
+    drop(p);
+    let mut jv = vec![0.0; n];
+    jac.negative_jacobian_times(&v, &mut jv);
+    let err = fd
+        .iter()
+        .zip(&jv)
+        .map(|(a, b)| (a - b) * (a - b))
+        .sum::<f64>()
+        .sqrt();
+    let norm = fd.iter().map(|a| a * a).sum::<f64>().sqrt();
+    let worst = fd
+        .iter()
+        .zip(&jv)
+        .enumerate()
+        .map(|(i, (a, b))| (i, (a - b).abs()))
+        .fold((0, 0.0), |m, e| if e.1 > m.1 { e } else { m });
+    eprintln!(
+        "relative error {:.3e} (worst entry {} {:.3e} of {:.3e}); n {n}",
+        err / norm,
+        worst.0,
+        worst.1,
+        fd.iter().map(|a| a.abs()).fold(0.0, f64::max)
+    );
+    err / norm
+}
+
+const BLOCK: &str = r#"
+title = "block"
+[analysis]
+strain = "STRAIN"
+[time]
+end = 1.0
+steps = 1
+[[body]]
+name = "b"
+mesh = { generator = "box", min = [0, 0, 0], max = [1, 0.6, 0.8], cells = [4, 3, 3], grading = GRADING }
+material = MATERIAL
+[body.boundary.xmin]
+type = "displacement"
+value = [0, 0, 0]
+[body.boundary.ymin]
+type = "symmetry"
+[body.boundary.xmax]
+type = "traction"
+value = [5, 2, 0]
+[body.boundary.zmax]
+type = "pressure"
+value = 3
+[body.boundary.zmin]
+type = "normal-displacement"
+value = 0.01
+"#;
+
+#[test]
+fn assembled_jacobian_is_the_derivative_of_the_residual() {
+    let cases = [
+        (
+            "small",
+            "[1, 1, 1]",
+            "{ model = \"linear-elastic\", E = 1000, nu = 0.3 }",
+            1e-3,
+        ),
+        (
+            "large",
+            "[1.3, 0.8, 1.1]",
+            "{ model = \"neo-hookean\", E = 1000, nu = 0.3 }",
+            2e-2,
+        ),
+        (
+            "large",
+            "[1.3, 0.8, 1.1]",
+            "{ model = \"neo-hookean-plastic\", E = 1000, nu = 0.3, yield = 5, hardening = 50 }",
+            2e-2,
+        ),
+        (
+            "small",
+            "[1.3, 0.8, 1.1]",
+            "{ model = \"linear-elastic\", E = 1000, nu = 0.45 }",
+            1e-3,
+        ),
+    ];
+    for (strain, gen, material, scale) in cases {
+        let text = BLOCK
+            .replace("STRAIN", strain)
+            .replace("GRADING", gen)
+            .replace("MATERIAL", material);
+        // the loads as given: under large strain the follower terms (how a
+        // traction's or pressure's area follows the state) are left out
+        let e = assembled_against_products(&text, 11, scale);
+        let bound = if strain == "small" { 1e-6 } else { 2e-3 };
+        assert!(e < bound, "{strain} {gen} {material}: {e:.3e}");
+        // without loads: the rest is exact to the tangents' differences
+        let unloaded = text
+            .replace("value = [5, 2, 0]", "value = [0, 0, 0]")
+            .replace("value = 3", "value = 0");
+        let e = assembled_against_products(&unloaded, 11, scale);
+        assert!(e < 1e-5, "{strain} {gen} {material} unloaded: {e:.3e}");
+    }
+}

@@ -1,0 +1,362 @@
+//! The assembled Jacobian of the state, as Newton's preconditioner: the
+//! bodies' blocks (`SolidMomentum::jacobian_blocks`, the exact
+//! linearisation of the discretisation with finite-difference material
+//! tangents) and the contact penalty springs of the last evaluation, as
+//! full 3 × 3 tensors, factorised by sparse LU (faer) or, for large
+//! systems, ILU(0). Where the segregated operator ignores how the
+//! displacement components couple — the bending of a slender body, whose
+//! shear-free rotation the component Laplacian resists at full stiffness —
+//! this matrix has it, and GMRES needs a few iterations instead of
+//! hundreds.
+use super::layout::StateLayout;
+use crate::contact_coupling::ContactSet;
+use crate::model::Body;
+use fv_discretise::{
+    BicgstabIlu0, CsrMatrix, DirectMethod, DirectSolver, LinearSolverError, MomentumParams,
+    StateNode,
+};
+use fv_mesh::{Tensor, Vector};
+
+/// A face of a contact surface whose gap is at most this fraction of its
+/// size (√area) gets the spring of a face in contact although it carries
+/// no pressure yet.
+const TOUCHING_GAP: f64 = 1e-6;
+
+/// Systems of at most this many scalar unknowns are factorised exactly
+/// (sparse LU); larger ones by ILU(0).
+pub const LU_LIMIT: usize = 150_000;
+
+enum Factor {
+    Lu(Box<DirectSolver>),
+    Ilu(Box<BicgstabIlu0>),
+}
+
+/// −J of the state, assembled, and its factorisation.
+pub struct AssembledJacobian {
+    n_nodes: usize,
+    /// Block pattern (rows = nodes), columns sorted per row.
+    row_ptr: Vec<u32>,
+    cols: Vec<u32>,
+    blocks: Vec<Tensor>,
+    /// The pattern's extra entries (contact springs between bodies).
+    extra: Vec<(u32, u32)>,
+    /// The scalar matrix over the solved components (`n_solved` per node)
+    /// and, per block entry, the value index of each of its solved
+    /// scalars (`n_solved²` per block).
+    scalar: CsrMatrix,
+    scalar_slot: Vec<u32>,
+    /// The solved components, and how many there are.
+    solved: [usize; 3],
+    n_solved: usize,
+    /// Right-hand side and solution over the solved components (workspace).
+    rs: Vec<f64>,
+    zs: Vec<f64>,
+    factor: Factor,
+    /// Contact springs between face nodes of two bodies (workspace).
+    springs: Vec<(u32, u32, Tensor)>,
+    /// Whether `factor` holds a factorisation of the last assembly.
+    factorised: bool,
+}
+
+/// The global node of a body's state node.
+fn global(body: &Body, layout: &StateLayout, bi: usize, node: StateNode) -> Option<u32> {
+    match node {
+        StateNode::Cell(c) => Some(body.offset as u32 + c),
+        StateNode::Face(b) => layout.face_node(bi, b as usize).map(|n| n as u32),
+    }
+}
+
+impl AssembledJacobian {
+    /// The pattern of the bodies (and of `extra` pairs), no values yet.
+    pub fn new(bodies: &[Body], layout: &StateLayout) -> Self {
+        let mut solved = [0; 3];
+        let mut n_solved = 0;
+        for c in (0..3).filter(|&c| !layout.unsolved[c]) {
+            solved[n_solved] = c;
+            n_solved += 1;
+        }
+        let mut j = AssembledJacobian {
+            solved,
+            n_solved,
+            rs: vec![0.0; n_solved * layout.n_nodes],
+            zs: vec![0.0; n_solved * layout.n_nodes],
+            n_nodes: layout.n_nodes,
+            row_ptr: Vec::new(),
+            cols: Vec::new(),
+            blocks: Vec::new(),
+            extra: Vec::new(),
+            scalar: CsrMatrix::from_faces(1, &[], &[]).0,
+            scalar_slot: Vec::new(),
+            factor: if n_solved * layout.n_nodes <= LU_LIMIT {
+                Factor::Lu(Box::new(DirectSolver::new(DirectMethod::Lu)))
+            } else {
+                Factor::Ilu(Box::new(BicgstabIlu0::new(n_solved * layout.n_nodes)))
+            },
+            springs: Vec::new(),
+            factorised: false,
+        };
+        j.build_pattern(bodies, layout);
+        j
+    }
+
+    /// Bytes of the matrix and its scalar copy (the factor comes on top).
+    pub fn memory_bytes(&self) -> usize {
+        self.blocks.len() * (72 + 4 + 36) + self.scalar.nnz() * 12
+    }
+
+    fn build_pattern(&mut self, bodies: &[Body], layout: &StateLayout) {
+        let mut rows: Vec<Vec<u32>> = vec![Vec::new(); self.n_nodes];
+        for (bi, b) in bodies.iter().enumerate().filter(|(_, b)| !b.rigid) {
+            b.momentum.jacobian_pattern(&b.mesh, &mut |r, c| {
+                if let (Some(r), Some(c)) = (global(b, layout, bi, r), global(b, layout, bi, c)) {
+                    rows[r as usize].push(c);
+                }
+            });
+        }
+        for (i, row) in rows.iter_mut().enumerate() {
+            row.push(i as u32);
+        }
+        for &(r, c) in &self.extra {
+            rows[r as usize].push(c);
+        }
+        self.row_ptr.clear();
+        self.cols.clear();
+        self.row_ptr.push(0);
+        for r in &mut rows {
+            r.sort_unstable();
+            r.dedup();
+            self.cols.extend_from_slice(r);
+            self.row_ptr.push(self.cols.len() as u32);
+        }
+        self.blocks = vec![Tensor::zeros(); self.cols.len()];
+        // the scalar matrix: n_solved² entries per block
+        let m = self.n_solved;
+        let mut triplets = Vec::with_capacity(m * m * self.cols.len());
+        for r in 0..self.n_nodes {
+            for k in self.row_ptr[r] as usize..self.row_ptr[r + 1] as usize {
+                let c = self.cols[k] as usize;
+                for i in 0..m {
+                    for jj in 0..m {
+                        triplets.push(((m * r + i) as u32, (m * c + jj) as u32, 0.0));
+                    }
+                }
+            }
+        }
+        self.scalar = CsrMatrix::from_triplets(m * self.n_nodes, &triplets)
+            .unwrap_or_else(|_| CsrMatrix::from_faces(m * self.n_nodes, &[], &[]).0);
+        self.scalar_slot.clear();
+        for r in 0..self.n_nodes {
+            for k in self.row_ptr[r] as usize..self.row_ptr[r + 1] as usize {
+                let c = self.cols[k] as usize;
+                for i in 0..m {
+                    for jj in 0..m {
+                        let e = self.scalar.entry_index(m * r + i, m * c + jj).unwrap_or(0);
+                        self.scalar_slot.push(e as u32);
+                    }
+                }
+            }
+        }
+    }
+
+    /// The block slot of (row, col), if in the pattern.
+    #[inline]
+    fn slot(&self, r: u32, c: u32) -> Option<usize> {
+        let (s, e) = (
+            self.row_ptr[r as usize] as usize,
+            self.row_ptr[r as usize + 1] as usize,
+        );
+        self.cols[s..e].binary_search(&c).ok().map(|k| s + k)
+    }
+
+    /// Assembles −J at the bodies' current state with the contact springs
+    /// of the last contact evaluation, and factorises it.
+    pub fn assemble(
+        &mut self,
+        bodies: &[Body],
+        contacts: &ContactSet,
+        layout: &StateLayout,
+        params: &MomentumParams,
+    ) -> Result<(), LinearSolverError> {
+        self.contact_springs(bodies, contacts, layout);
+        let missing = self.springs.iter().any(|s| self.slot(s.0, s.1).is_none());
+        if missing {
+            for s in &self.springs {
+                self.extra.push((s.0, s.1));
+                self.extra.push((s.1, s.0));
+            }
+            self.extra.sort_unstable();
+            self.extra.dedup();
+            self.build_pattern(bodies, layout);
+        }
+        self.blocks.iter_mut().for_each(|b| *b = Tensor::zeros());
+        for (bi, b) in bodies.iter().enumerate().filter(|(_, b)| !b.rigid) {
+            let mut blocks = std::mem::take(&mut self.blocks);
+            b.momentum
+                .jacobian_blocks(&b.mesh, &b.geom, params, &mut |r, c, blk| {
+                    if let (Some(r), Some(c)) = (global(b, layout, bi, r), global(b, layout, bi, c))
+                    {
+                        if let Some(k) = self.slot(r, c) {
+                            blocks[k] -= blk;
+                        }
+                    }
+                });
+            self.blocks = blocks;
+        }
+        // grounded springs were added to the diagonal blocks; the others join two face nodes
+        for (a, b, k) in std::mem::take(&mut self.springs) {
+            if a == b {
+                if let Some(s) = self.slot(a, a) {
+                    self.blocks[s] += k;
+                }
+                continue;
+            }
+            for (r, c, sign) in [(a, a, 1.0), (b, b, 1.0), (a, b, -1.0), (b, a, -1.0)] {
+                if let Some(s) = self.slot(r, c) {
+                    self.blocks[s] += k * sign;
+                }
+            }
+        }
+        // to the scalar matrix of the solved components
+        let m = self.n_solved;
+        let v = self.scalar.values_mut();
+        v.iter_mut().for_each(|x| *x = 0.0);
+        for (k, blk) in self.blocks.iter().enumerate() {
+            for i in 0..m {
+                for jj in 0..m {
+                    v[self.scalar_slot[m * m * k + m * i + jj] as usize] +=
+                        blk[(self.solved[i], self.solved[jj])];
+                }
+            }
+        }
+        self.factorised = false;
+        match &mut self.factor {
+            Factor::Lu(s) => s.factorise(&self.scalar),
+            Factor::Ilu(s) => s.factorise(&self.scalar),
+        }?;
+        self.factorised = true;
+        Ok(())
+    }
+
+    /// The penalty springs of the last contact evaluation, as full
+    /// tensors: (node, node, k) — a grounded one has both nodes equal.
+    fn contact_springs(&mut self, bodies: &[Body], contacts: &ContactSet, layout: &StateLayout) {
+        self.springs.clear();
+        for ci in &contacts.interfaces {
+            let eps = ci.normal_penalty();
+            let eps_t = ci.tangential_penalty();
+            let tensor = |n: &Vector, scale: f64| {
+                let nn = n * n.transpose();
+                (nn * eps + (Tensor::identity() - nn) * eps_t) * scale
+            };
+            let beta = |side: &crate::contact_coupling::ContactSide,
+                        contact: &contact_force::SurfaceContact,
+                        i: usize| {
+                let c = contact.contact_fraction.get(i).copied().unwrap_or(0.0);
+                let g = contact.gap.get(i).copied().unwrap_or(f64::INFINITY);
+                if c == 0.0 && g.is_finite() && g <= TOUCHING_GAP * side.surface.face_mag[i].sqrt()
+                {
+                    1.0
+                } else {
+                    c
+                }
+            };
+            let (mb, sb) = (ci.master.body, ci.slave.body);
+            if bodies[mb].rigid || bodies[sb].rigid {
+                for (side, contact) in [
+                    (&ci.master, &ci.tractions.master),
+                    (&ci.slave, &ci.tractions.slave),
+                ] {
+                    let b = &bodies[side.body];
+                    if b.rigid {
+                        continue;
+                    }
+                    let start = b.mesh.patches[side.patch].start - b.mesh.n_internal_faces();
+                    for i in 0..side.surface.n_faces() {
+                        let be = beta(side, contact, i);
+                        if !(be > 0.0) {
+                            continue;
+                        }
+                        if let Some(node) = layout.face_node(side.body, start + i) {
+                            let k = tensor(
+                                &side.surface.face_normals[i],
+                                side.surface.face_mag[i] * be,
+                            );
+                            self.springs.push((node as u32, node as u32, k));
+                        }
+                    }
+                }
+                continue;
+            }
+            let (bm, bs) = (&bodies[mb], &bodies[sb]);
+            let m_start = bm.mesh.patches[ci.master.patch].start - bm.mesh.n_internal_faces();
+            let s_start = bs.mesh.patches[ci.slave.patch].start - bs.mesh.n_internal_faces();
+            for m in 0..ci.master.surface.n_faces() {
+                let be = beta(&ci.master, &ci.tractions.master, m);
+                if !(be > 0.0) {
+                    continue;
+                }
+                let Some(nm) = layout.face_node(mb, m_start + m) else {
+                    continue;
+                };
+                let normal = ci.master.surface.face_normals[m];
+                let (slaves, overlaps) = ci.tractions.ggi.master_row(m);
+                for (&s, &w) in slaves.iter().zip(overlaps) {
+                    let Some(ns) = layout.face_node(sb, s_start + s as usize) else {
+                        continue;
+                    };
+                    if w > 0.0 {
+                        self.springs
+                            .push((nm as u32, ns as u32, tensor(&normal, be * w)));
+                    }
+                }
+            }
+        }
+    }
+
+    /// Whether a factorisation is held.
+    pub fn is_factorised(&self) -> bool {
+        self.factorised
+    }
+
+    /// z = (−J)⁻¹ r (interleaved node-major vectors).
+    pub fn apply(&mut self, r: &[f64], z: &mut [f64]) -> Result<(), LinearSolverError> {
+        self.gather(r);
+        match &mut self.factor {
+            Factor::Lu(s) => s.solve(&self.scalar, &self.rs, &mut self.zs).map(|_| ()),
+            Factor::Ilu(s) => s.apply_preconditioner(&self.rs, &mut self.zs),
+        }?;
+        self.scatter(z);
+        Ok(())
+    }
+
+    /// The solved components of `r` into `rs`.
+    fn gather(&mut self, r: &[f64]) {
+        let m = self.n_solved;
+        for (node, rs) in self.rs.chunks_exact_mut(m).enumerate() {
+            for (i, v) in rs.iter_mut().enumerate() {
+                *v = r[3 * node + self.solved[i]];
+            }
+        }
+    }
+
+    /// `zs` into the solved components of `z`, the others zero.
+    fn scatter(&self, z: &mut [f64]) {
+        let m = self.n_solved;
+        z.iter_mut().for_each(|v| *v = 0.0);
+        for (node, zs) in self.zs.chunks_exact(m).enumerate() {
+            for (i, v) in zs.iter().enumerate() {
+                z[3 * node + self.solved[i]] = *v;
+            }
+        }
+    }
+
+    /// −J v with the assembled blocks (for tests against the Jacobian
+    /// products).
+    pub fn negative_jacobian_times(&mut self, v: &[f64], out: &mut [f64]) {
+        self.gather(v);
+        let mut zs = std::mem::take(&mut self.zs);
+        self.scalar.mul_vec(&self.rs, &mut zs);
+        self.zs = zs;
+        self.scatter(out);
+    }
+}

@@ -326,16 +326,6 @@ impl NewtonKrylov {
                 }
                 Err(_) => {}
             }
-            if std::env::var_os("FVC_NK_STEPDEBUG").is_some() {
-                let (mut imax, mut vmax) = (0, 0.0f64);
-                for (i, d) in self.dx.iter().enumerate() {
-                    if d.abs() > vmax {
-                        vmax = d.abs();
-                        imax = i;
-                    }
-                }
-                eprintln!("      step max |dx| {vmax:.3e} at entry {imax} (node {}, comp {}), |F| {fnorm:.3e}, F there {:.3e}", imax / 3, imax % 3, self.f[imax]);
-            }
             // line search along dx
             let mut lambda = 1.0;
             let mut accepted = false;

@@ -391,6 +391,11 @@ pub struct ContactInterface {
     pub slave: ContactSide,
     detector: Box<dyn Detector + Send>,
     pairs: CandidatePairs,
+    /// The last detection (Newton–Krylov: `pairs` is the union of the
+    /// attempt's detections, `state_evaluation::accumulate_pairs`).
+    detected: CandidatePairs,
+    /// Whether `pairs` holds a detection of the current attempt.
+    pairs_this_attempt: bool,
     algorithm: Box<dyn ContactAlgorithm>,
     law: ContactLaw,
     params: PenaltyParams,
@@ -954,6 +959,8 @@ impl ContactSet {
                 slave,
                 detector,
                 pairs: CandidatePairs::new(),
+                detected: CandidatePairs::new(),
+                pairs_this_attempt: false,
                 algorithm,
                 law,
                 params,
@@ -1537,6 +1544,7 @@ impl ContactSet {
     pub fn save_start(&mut self) {
         self.updates_in_increment = 0;
         for ci in &mut self.interfaces {
+            ci.pairs_this_attempt = false;
             ci.best_change = f64::INFINITY;
             ci.window_min = f64::INFINITY;
             ci.window_updates = 0;

@@ -47,6 +47,12 @@ pub trait NonlinearSolver {
 
     /// Adds seconds to the phases (the time loop's own work).
     fn times_mut(&mut self) -> &mut PhaseTimes;
+
+    /// What the method chose since the last call that the log should say
+    /// (e.g. a preconditioner it switched to).
+    fn take_notes(&mut self) -> Vec<String> {
+        Vec::new()
+    }
 }
 
 /// The solver of `settings.nonlinear` for the bodies (whose contact

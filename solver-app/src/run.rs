@@ -338,6 +338,9 @@ fn run_case_noting(
                     }
                 }
             });
+            for note in solver.take_notes() {
+                log.warn(&format!("increment {k}: {note}"));
+            }
             let failed = match &attempt {
                 Ok(info) => !info.converged,
                 Err(e) => !matches!(e, crate::segregated::SolveError::Unconstrained { .. }),

@@ -180,6 +180,8 @@ pub struct LinearSettings {
     pub max_iterations: usize,
     /// Newton–Krylov: GMRES restart length (>= 1, default 30).
     pub restart: usize,
+    /// Newton–Krylov: the preconditioner (default auto).
+    pub preconditioner: crate::newton::preconditioning::Preconditioning,
 }
 
 impl LinearSettings {
@@ -203,6 +205,7 @@ impl Default for LinearSettings {
             tolerance: 0.1,
             max_iterations: 500,
             restart: 30,
+            preconditioner: Default::default(),
         }
     }
 }
@@ -224,6 +227,7 @@ impl LinearSettings {
             tolerance: NEWTON_FORCING_MAX,
             max_iterations: 200,
             restart: 30,
+            preconditioner: Default::default(),
         }
     }
 }
@@ -528,10 +532,12 @@ pub(crate) fn solver(
                     ));
                 }
             }
-            if let (Some(r), false) = (table.get("restart"), newton) {
-                return Err(r.node().err(
-                    "restart is the GMRES restart length of nonlinear = \"newton-krylov\"; the segregated method has no use for it",
-                ));
+            for key in ["restart", "preconditioner"] {
+                if let (Some(r), false) = (table.get(key), newton) {
+                    return Err(r.node().err(format!(
+                        "{key} belongs to Newton's linear solves (nonlinear = \"newton-krylov\"); the segregated method has no use for it"
+                    )));
+                }
             }
             s
         }
@@ -596,7 +602,13 @@ pub(crate) fn solver(
 }
 
 fn linear(t: &Table<'_>, d: &LinearSettings) -> Res<LinearSettings> {
-    t.deny_unknown(&["method", "tolerance", "max_iterations", "restart"])?;
+    t.deny_unknown(&[
+        "method",
+        "tolerance",
+        "max_iterations",
+        "restart",
+        "preconditioner",
+    ])?;
     Ok(LinearSettings {
         method: t.opt("method", d.method, |n| {
             n.choice(
@@ -611,6 +623,10 @@ fn linear(t: &Table<'_>, d: &LinearSettings) -> Res<LinearSettings> {
         })?,
         tolerance: t.opt("tolerance", d.tolerance, tolerance)?,
         max_iterations: t.opt("max_iterations", d.max_iterations, |n| n.usize_min(1))?,
+        preconditioner: t.opt("preconditioner", d.preconditioner, |n| {
+            use crate::newton::preconditioning::Preconditioning;
+            n.choice("preconditioner", &Preconditioning::ALL.map(|p| (p.name(), p)))
+        })?,
         restart: t.opt("restart", d.restart, |n| {
             let m = n.usize_min(1)?;
             if m > MAX_RESTART {

@@ -159,7 +159,8 @@ every = 5
                 method: LinearMethod::BicgstabIlu,
                 tolerance: 1e-3,
                 max_iterations: 50,
-                restart: 30
+                restart: 30,
+                preconditioner: Default::default()
             },
             rhie_chow: 0.0,
             rhie_chow_given: true,

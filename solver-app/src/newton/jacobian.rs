@@ -230,9 +230,9 @@ impl AssembledJacobian {
         }
         self.factorised = false;
         match &mut self.factor {
-            Factor::Lu(s) => s.factorise(&self.scalar),
-            Factor::Ilu(s) => s.factorise(&self.scalar),
-        }?;
+            Factor::Lu(s) => s.factorise(&self.scalar)?,
+            Factor::Ilu(s) => s.factorise(&self.scalar)?,
+        };
         self.factorised = true;
         Ok(())
     }
@@ -322,9 +322,9 @@ impl AssembledJacobian {
     pub fn apply(&mut self, r: &[f64], z: &mut [f64]) -> Result<(), LinearSolverError> {
         self.gather(r);
         match &mut self.factor {
-            Factor::Lu(s) => s.solve(&self.scalar, &self.rs, &mut self.zs).map(|_| ()),
-            Factor::Ilu(s) => s.apply_preconditioner(&self.rs, &mut self.zs),
-        }?;
+            Factor::Lu(s) => s.solve(&self.scalar, &self.rs, &mut self.zs).map(|_| ())?,
+            Factor::Ilu(s) => s.apply_preconditioner(&self.rs, &mut self.zs)?,
+        };
         self.scatter(z);
         Ok(())
     }

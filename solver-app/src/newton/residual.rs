@@ -7,7 +7,7 @@
 //! computed from x inside the call.
 use super::jacobian::AssembledJacobian;
 use super::layout::StateLayout;
-use super::preconditioner::StatePreconditioner;
+use super::segregated_operator::SegregatedOperator;
 use crate::contact_coupling::ContactSet;
 use crate::model::Body;
 use crate::profile::{Phase, PhaseTimes};
@@ -97,7 +97,7 @@ pub struct ModelProblem<'a> {
     pub work: &'a mut ResidualWork,
     /// The segregated operator with the contact springs (the
     /// preconditioner when there is no assembled Jacobian).
-    pub preconditioner: &'a mut StatePreconditioner,
+    pub preconditioner: &'a mut SegregatedOperator,
     /// The assembled Jacobian, when it preconditions.
     pub jacobian: Option<&'a mut AssembledJacobian>,
     /// Seconds per phase.

@@ -460,7 +460,8 @@ fn case_format_example_parses_with_stated_values() {
             method: LinearMethod::PcgIc,
             tolerance: 0.1,
             max_iterations: 500,
-            restart: 30
+            restart: 30,
+            preconditioner: Default::default()
         }
     );
     assert_eq!(c.solver.rhie_chow, 0.1);

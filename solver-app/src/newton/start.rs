@@ -1,0 +1,119 @@
+//! The first iterate of an increment's Newton solve.
+use super::NewtonKrylovSolver;
+use crate::contact_coupling::ContactSet;
+use crate::model::Body;
+use fv_nonlinear::{Frozen, NonlinearProblem};
+
+/// The fraction of a step by which the conditions move to measure the
+/// start state's response ([`NewtonKrylovSolver::linear_predictor`]).
+const PREDICTOR_FRACTION: f64 = 1e-3;
+
+/// Halvings of a predicted first iterate that is not admissible before
+/// the increment starts from its beginning instead.
+const START_HALVINGS: usize = 6;
+
+impl NewtonKrylovSolver {
+    /// The first iterate into `self.x`: the linear predictor, shortened
+    /// until admissible, or zero (the start state).
+    pub(super) fn first_iterate(&mut self, bodies: &mut [Body], contacts: &mut ContactSet) {
+        self.x.iter_mut().for_each(|v| *v = 0.0);
+        if self.linear_predictor(bodies, contacts) {
+            self.admissible_start(bodies, contacts);
+        }
+    }
+
+    /// The linear response of the start state to the step of the
+    /// prescribed values and loads, as finite-element codes take the first
+    /// iterate, x₀ = −J⁻¹ ∂F/∂t Δt: the residual's change at the start
+    /// state when the conditions move by the fraction
+    /// [`PREDICTOR_FRACTION`] of the step, divided by it, solved with the
+    /// preconditioner assembled at the start (the segregated operator: the
+    /// harmonic extension of the step; the assembled Jacobian: the tangent
+    /// step), the contact springs of the start included. What the step
+    /// prescribes enters through the start's tangent, not as a jump of the
+    /// prescribed faces away from their cells: from x = 0 the whole step
+    /// sits in the half cells by those faces, whose points the jump can
+    /// throw far into a plastic or inverted state (curved beams: Newton
+    /// steps of tens of millimetres, and no convergence, from there).
+    /// False when a stage fails or nothing moves.
+    fn linear_predictor(&mut self, bodies: &mut [Body], contacts: &mut ContactSet) -> bool {
+        let (t0, t1) = self.step_times;
+        if !(t1 > t0) {
+            return false;
+        }
+        let th = t0 + PREDICTOR_FRACTION * (t1 - t0);
+        let n = self.x.len();
+        let zero = vec![0.0; n];
+        let mut f0 = vec![0.0; n];
+        let mut fh = vec![0.0; n];
+        for b in bodies.iter_mut() {
+            b.refresh_conditions(t0);
+        }
+        let ok = {
+            let mut problem = self.problem(bodies, contacts);
+            problem.residual(&zero, &mut f0, Frozen::Renew).is_ok()
+                && problem.prepare_preconditioner(&zero, false).is_ok()
+        };
+        for b in bodies.iter_mut() {
+            b.refresh_conditions(th);
+        }
+        let ok = ok && {
+            let mut problem = self.problem(bodies, contacts);
+            problem.residual(&zero, &mut fh, Frozen::Keep).is_ok()
+        };
+        for b in bodies.iter_mut() {
+            b.refresh_conditions(t1);
+        }
+        if !ok {
+            return false;
+        }
+        let rhs: Vec<f64> = fh
+            .iter()
+            .zip(&f0)
+            .map(|(a, b)| (a - b) / PREDICTOR_FRACTION)
+            .collect();
+        let mut x0 = vec![0.0; n];
+        self.problem(bodies, contacts).precondition(&rhs, &mut x0);
+        if !x0.iter().all(|v| v.is_finite()) || x0.iter().all(|v| *v == 0.0) {
+            return false;
+        }
+        self.x.copy_from_slice(&x0);
+        true
+    }
+
+    /// Shortens the predicted first iterate until the residual can be
+    /// evaluated there — no cell or face point inverted, no contact face
+    /// deeper than the penetration a step may add to the start's — by
+    /// halves, [`START_HALVINGS`] times, then zero.
+    fn admissible_start(&mut self, bodies: &mut [Body], contacts: &mut ContactSet) {
+        let x0 = self.x.clone();
+        let mut f = vec![0.0; x0.len()];
+        let zero = vec![0.0; x0.len()];
+        let mut x = x0.clone();
+        let mut accepted = false;
+        {
+            let mut problem = self.problem(bodies, contacts);
+            // the start state is the reference of the penetration a
+            // first iterate may add
+            if problem.residual(&zero, &mut f, Frozen::Renew).is_ok() {
+                problem.accept();
+            }
+            let mut scale = 1.0;
+            for _ in 0..=START_HALVINGS {
+                for (x, v) in x.iter_mut().zip(&x0) {
+                    *x = v * scale;
+                }
+                if problem.residual(&x, &mut f, Frozen::Renew).is_ok() {
+                    accepted = true;
+                    break;
+                }
+                scale *= 0.5;
+            }
+        }
+        if accepted {
+            self.x.copy_from_slice(&x);
+        } else {
+            self.x.iter_mut().for_each(|v| *v = 0.0);
+        }
+    }
+}

@@ -326,8 +326,8 @@ impl NewtonKrylov {
                 }
                 Err(_) => {}
             }
-            // line search along dx
-            let mut lambda = 1.0;
+            // line search along dx, from the step the problem trusts
+            let mut lambda = problem.step_limit(x, &self.dx).clamp(1e-3, 1.0);
             let mut accepted = false;
             let mut last_reason = None;
             for backtrack in 0..=params.line_search.max_backtracks {
@@ -344,6 +344,7 @@ impl NewtonKrylov {
                     }
                 };
                 let discontinuity = backtrack == 0
+                    && lambda == 1.0
                     && trial.is_finite()
                     && discontinuity_steps < params.line_search.discontinuity_steps
                     && problem.changes_at_last_renewal() > 0;

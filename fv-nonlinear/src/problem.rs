@@ -55,13 +55,21 @@ pub trait NonlinearProblem {
     /// Jacobian, as the segregated operator does: F(x + δ) ≈ F(x) − P δ).
     fn precondition(&mut self, r: &[f64], z: &mut [f64]);
 
-    /// How many entries of the frozen data (contact faces opening,
-    /// closing, sticking or slipping; candidate pairs) the last
-    /// [`Frozen::Renew`] evaluation changed against the one before it: a
-    /// step that changes them crossed a kink of F, and Newton's linear
-    /// model could not see the new state (0 for a smooth problem).
+    /// How many constraints the last [`Frozen::Renew`] evaluation found
+    /// active that were not at the one before it (contact faces that came
+    /// into contact): a step that activates them crossed a kink of F that
+    /// Newton's linear model could not see (0 for a smooth problem).
     fn changes_at_last_renewal(&self) -> usize {
         0
+    }
+
+    /// The longest fraction of the Newton step `dx` from the base point `x`
+    /// the problem trusts its linear model for (1: all of it): the line
+    /// search starts there. A problem whose residual turns sharply away
+    /// from its linearisation a short way off (contact surfaces sliding
+    /// over each other's facets) bounds how far one step may move them.
+    fn step_limit(&self, _x: &[f64], _dx: &[f64]) -> f64 {
+        1.0
     }
 
     /// The last point evaluated with [`Frozen::Renew`] is the new base

@@ -1072,13 +1072,19 @@ fn case_level_errors() {
     assert!(e.message.contains("\"abort\", \"continue\""), "{e}");
     let e = fail(&MIN.replace(
         "[[body]]",
-        "[solver]\nlinear = { method = \"gmres\" }\n[[body]]",
+        "[solver]\nlinear = { method = \"cg\" }\n[[body]]",
     ));
     assert!(
         e.message
             .contains("\"pcg-ic\", \"direct\", \"bicgstab-ilu\""),
         "{e}"
     );
+    assert_eq!(e.key.as_deref(), Some("solver.linear.method"));
+    let e = fail(&MIN.replace(
+        "[[body]]",
+        "[solver]\nnonlinear = \"segregated\"\nlinear = { method = \"gmres\" }\n[[body]]",
+    ));
+    assert!(e.message.contains("needs [solver] nonlinear"), "{e}");
     assert_eq!(e.key.as_deref(), Some("solver.linear.method"));
     let e = fail(&MIN.replace("[[body]]", "[solver]\nrelaxation = 0\n[[body]]"));
     assert_eq!(e.key.as_deref(), Some("solver.relaxation"));

@@ -263,8 +263,8 @@ fn accumulate_pairs(ci: &mut super::ContactInterface) {
     debug_assert!(ci.pairs.n_pairs() >= before);
 }
 
-/// Faces of `side` whose contact state differs from the last renewal's;
-/// records the new states.
+/// Faces of `side` that are pressed now and were not at the last renewal;
+/// records the new states (open, pressed, sticking, slipping).
 fn count_changes(side: &mut ContactSide, contact: &contact_force::SurfaceContact) -> usize {
     let n = contact.n_faces();
     if side.state_signature.len() != n {
@@ -279,7 +279,10 @@ fn count_changes(side: &mut ContactSide, contact: &contact_force::SurfaceContact
             st == contact_force::FrictionState::Stick,
             st == contact_force::FrictionState::Slip,
         );
-        changed += usize::from(*s != new);
+        // a face that came into contact (a step that ran into a contact
+        // its linear model did not have); faces that open or change
+        // between stick and slip are not counted
+        changed += usize::from(*s == 0 && new != 0);
         *s = new;
     }
     changed

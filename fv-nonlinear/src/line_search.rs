@@ -31,6 +31,9 @@ pub struct LineSearchParams {
     pub discontinuity_steps: usize,
     /// See `min_factor`.
     pub max_factor: f64,
+    /// Accepted iterates without progress after which the test turns
+    /// monotone for a window ([`NonMonotone`]; 0: never).
+    pub stall_iterations: usize,
 }
 
 impl Default for LineSearchParams {
@@ -42,23 +45,42 @@ impl Default for LineSearchParams {
             min_factor: 0.1,
             discontinuity_steps: 8,
             max_factor: 0.5,
+            stall_iterations: 3,
         }
     }
 }
 
-/// The reference norms of the non-monotone test.
+/// The reference norms of the non-monotone test, with a watchdog: when
+/// [`LineSearchParams::stall_iterations`] accepted iterates in a row leave
+/// the best residual so far above [`STALL_PROGRESS`] of itself (a cycle
+/// between two active sets — a plastic or contact switch that each full
+/// step crosses back — which the window maximum lets through), the next
+/// `window` iterates must decrease the residual monotonically.
 #[derive(Debug, Clone)]
 pub struct NonMonotone {
     norms: Vec<f64>,
     window: usize,
+    stall_iterations: usize,
+    best: f64,
+    stalled: usize,
+    monotone_left: usize,
 }
 
+/// An iterate improves on the best residual so far when it is below this
+/// fraction of it.
+pub const STALL_PROGRESS: f64 = 0.9;
+
 impl NonMonotone {
-    /// An empty history of `window` iterates (at least one).
-    pub fn new(window: usize) -> Self {
+    /// An empty history of `window` iterates (at least one); a watchdog
+    /// after `stall_iterations` iterates without progress (0: none).
+    pub fn new(window: usize, stall_iterations: usize) -> Self {
         NonMonotone {
             norms: Vec::with_capacity(window.max(1)),
             window: window.max(1),
+            stall_iterations,
+            best: f64::INFINITY,
+            stalled: 0,
+            monotone_left: 0,
         }
     }
 
@@ -68,12 +90,33 @@ impl NonMonotone {
             self.norms.remove(0);
         }
         self.norms.push(norm);
+        self.monotone_left = self.monotone_left.saturating_sub(1);
+        if norm < STALL_PROGRESS * self.best || self.best == f64::INFINITY {
+            self.best = norm;
+            self.stalled = 0;
+        } else if self.stall_iterations > 0 {
+            self.stalled += 1;
+            if self.stalled >= self.stall_iterations {
+                self.monotone_left = self.window;
+                self.stalled = 0;
+                self.best = norm;
+            }
+        }
     }
 
-    /// The largest recorded norm (∞ when none).
+    /// Whether the watchdog holds the test monotone.
+    pub fn is_monotone(&self) -> bool {
+        self.monotone_left > 0
+    }
+
+    /// The largest recorded norm, or the last while the watchdog holds
+    /// (∞ when none).
     pub fn reference(&self) -> f64 {
         if self.norms.is_empty() {
             return f64::INFINITY;
+        }
+        if self.is_monotone() {
+            return self.norms[self.norms.len() - 1];
         }
         self.norms.iter().copied().fold(f64::NEG_INFINITY, f64::max)
     }
@@ -113,13 +156,34 @@ mod tests {
 
     #[test]
     fn non_monotone_reference_is_the_window_maximum() {
-        let mut h = NonMonotone::new(3);
+        let mut h = NonMonotone::new(3, 0);
         assert_eq!(h.reference(), f64::INFINITY);
         for v in [5.0, 1.0, 2.0, 0.5] {
             h.push(v);
         }
         // 5.0 left the window
         assert_eq!(h.reference(), 2.0);
+    }
+
+    #[test]
+    fn watchdog_turns_a_cycle_monotone() {
+        let mut h = NonMonotone::new(5, 3);
+        // progress, then a two-cycle that the window maximum would accept
+        for v in [1.0, 0.5, 0.6, 0.52] {
+            h.push(v);
+            assert!(!h.is_monotone());
+        }
+        assert_eq!(h.reference(), 1.0);
+        h.push(0.6);
+        // three iterates without a 10 % gain on 0.5: the last is the reference
+        assert!(h.is_monotone());
+        assert_eq!(h.reference(), 0.6);
+        // progress from there: monotone for the rest of the window only
+        for (i, v) in [0.4, 0.2, 0.1, 0.05, 0.02].into_iter().enumerate() {
+            h.push(v);
+            assert_eq!(h.is_monotone(), i < 4, "{i}");
+        }
+        assert_eq!(h.reference(), 0.4);
     }
 
     #[test]

@@ -252,7 +252,10 @@ impl NewtonKrylov {
         let mut fnorm = norm(&self.f);
         let mut reference = problem.residual_reference();
         let mut forcing = Forcing::new(params.forcing);
-        let mut history = NonMonotone::new(params.line_search.window);
+        let mut history = NonMonotone::new(
+            params.line_search.window,
+            params.line_search.stall_iterations,
+        );
         let mut discontinuity_steps = 0;
         // Krylov iterations of the previous step (none before the first)
         let mut last_krylov: Option<usize> = None;
@@ -345,6 +348,7 @@ impl NewtonKrylov {
                 };
                 let discontinuity = backtrack == 0
                     && lambda == 1.0
+                    && !history.is_monotone()
                     && trial.is_finite()
                     && discontinuity_steps < params.line_search.discontinuity_steps
                     && problem.changes_at_last_renewal() > 0;
@@ -357,7 +361,10 @@ impl NewtonKrylov {
                         discontinuity_steps += 1;
                         info.discontinuity_steps += 1;
                         // the residual of a new active set starts a new history
-                        history = NonMonotone::new(params.line_search.window);
+                        history = NonMonotone::new(
+                            params.line_search.window,
+                            params.line_search.stall_iterations,
+                        );
                     }
                     accepted = true;
                     fnorm = trial;

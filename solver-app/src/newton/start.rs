@@ -137,7 +137,8 @@ impl NewtonKrylovSolver {
                 for (x, v) in x.iter_mut().zip(&x0) {
                     *x = v * scale;
                 }
-                if problem.residual(&x, &mut f, Frozen::Renew).is_ok() {
+                let r = problem.residual(&x, &mut f, Frozen::Renew);
+                if r.is_ok() {
                     accepted = true;
                     break;
                 }

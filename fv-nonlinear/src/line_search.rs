@@ -104,6 +104,13 @@ impl NonMonotone {
         }
     }
 
+    /// Forgets the recorded norms (a new active set's residual is no
+    /// measure against the old one's); the watchdog keeps its count and
+    /// its best residual.
+    pub fn restart_window(&mut self) {
+        self.norms.clear();
+    }
+
     /// Whether the watchdog holds the test monotone.
     pub fn is_monotone(&self) -> bool {
         self.monotone_left > 0

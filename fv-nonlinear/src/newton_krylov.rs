@@ -19,16 +19,19 @@
 //! no Rust crate's Newton solver offers (PETSc's SNES does, behind FFI).
 use crate::forcing::{Forcing, ForcingParams};
 use crate::gmres::{Gmres, GmresParams, KrylovSystem};
-use crate::line_search::{next_length, sufficient, LineSearchParams, NonMonotone};
+use crate::line_search::{next_length, sufficient, LineSearchParams, NonMonotone, STALL_PROGRESS};
 use crate::problem::{Frozen, Inadmissible, NonlinearProblem};
+use crate::pseudo_transient::{PseudoTransient, PseudoTransientParams};
 use crate::vector_ops::norm;
 
 /// Parameters of a Newton–Krylov solve.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NewtonParams {
-    /// Converged when ‖F‖ ≤ tolerance × [`NonlinearProblem::residual_reference`].
+    /// Converged when ‖F‖ ≤ tolerance × [`NonlinearProblem::residual_reference`]
+    /// (or ≤ [`NonlinearProblem::roundoff_floor`]).
     pub tolerance: f64,
-    /// Most Newton iterations.
+    /// Most Newton iterations (steps tried, including those whose line
+    /// search failed and the continuation took over).
     pub max_iterations: usize,
     /// Krylov restart length and iteration cap per Newton step (its
     /// `tolerance` is replaced by the forcing term).
@@ -41,6 +44,13 @@ pub struct NewtonParams {
     /// when the last linear solve took at most this many Krylov
     /// iterations ([`NonlinearProblem::prepare_preconditioner`]).
     pub reuse_preconditioner_below: usize,
+    /// Pseudo-transient continuation where the line search fails (`None`:
+    /// the solve ends there).
+    pub pseudo_transient: Option<PseudoTransientParams>,
+    /// A solve whose line search finds no decrease (or that runs out of
+    /// iterations) within this factor of the tolerance is converged to the
+    /// floor of a non-smooth residual ([`NewtonInfo::at_floor`]); 0: never.
+    pub floor_factor: f64,
 }
 
 impl Default for NewtonParams {
@@ -57,6 +67,8 @@ impl Default for NewtonParams {
             forcing: ForcingParams::default(),
             line_search: LineSearchParams::default(),
             reuse_preconditioner_below: 5,
+            pseudo_transient: Some(PseudoTransientParams::default()),
+            floor_factor: 100.0,
         }
     }
 }
@@ -75,6 +87,13 @@ pub struct NewtonInfo {
     /// Full steps accepted across a change of the frozen data whatever
     /// their residual ([`LineSearchParams::discontinuity_steps`]).
     pub discontinuity_steps: usize,
+    /// Failed line searches after which the pseudo-transient continuation
+    /// took over ([`PseudoTransient`]).
+    pub rescues: usize,
+    /// Converged at the floor of a non-smooth residual: no step decreased
+    /// ‖F‖ within [`NewtonParams::floor_factor`] × the tolerance (contact
+    /// faces that open and close at the solution).
+    pub at_floor: bool,
     /// ‖F‖ / reference at exit.
     pub residual: f64,
     /// Whether the tolerance was reached.
@@ -89,8 +108,10 @@ impl NewtonInfo {
         self.residual_evaluations += other.residual_evaluations;
         self.backtracks += other.backtracks;
         self.discontinuity_steps += other.discontinuity_steps;
+        self.rescues += other.rescues;
         self.residual = other.residual;
         self.converged = other.converged;
+        self.at_floor |= other.at_floor;
     }
 }
 
@@ -144,6 +165,8 @@ pub struct IterationReport {
     /// Whether the step was accepted across a change of the frozen data
     /// whatever its residual.
     pub discontinuity: bool,
+    /// The pseudo-transient shift σ of its linear solve (0: Newton).
+    pub shift: f64,
 }
 
 /// Square root of the machine epsilon, the relative size of the
@@ -174,6 +197,8 @@ struct NegativeJacobian<'a, P: NonlinearProblem> {
     f_probe: &'a mut [f64],
     /// ‖x‖ + s √n.
     size: f64,
+    /// Pseudo-transient shift σ: the operator is −J + σ D.
+    shift: f64,
     evaluations: usize,
 }
 
@@ -194,6 +219,11 @@ impl<P: NonlinearProblem> KrylovSystem for NegativeJacobian<'_, P> {
         let inv_h = 1.0 / h;
         for ((o, fp), fx) in out.iter_mut().zip(self.f_probe.iter()).zip(self.fx) {
             *o = -(fp - fx) * inv_h;
+        }
+        if self.shift > 0.0 && self.problem.damping(v, self.f_probe) {
+            for (o, d) in out.iter_mut().zip(self.f_probe.iter()) {
+                *o += self.shift * d;
+            }
         }
         Ok(())
     }
@@ -257,6 +287,8 @@ impl NewtonKrylov {
             params.line_search.stall_iterations,
         );
         let mut discontinuity_steps = 0;
+        let mut last_discontinuity_base = f64::INFINITY;
+        let mut continuation = params.pseudo_transient.map(PseudoTransient::new);
         // Krylov iterations of the previous step (none before the first)
         let mut last_krylov: Option<usize> = None;
         history.push(fnorm);
@@ -266,7 +298,7 @@ impl NewtonKrylov {
             ..Default::default()
         });
         for k in 1..=params.max_iterations {
-            let target = params.tolerance * reference;
+            let target = (params.tolerance * reference).max(problem.roundoff_floor());
             if fnorm <= target {
                 info.converged = true;
                 return Ok(info);
@@ -289,6 +321,7 @@ impl NewtonKrylov {
                 x_probe: &mut self.x_probe,
                 f_probe: &mut self.f_probe,
                 size,
+                shift: continuation.map_or(0.0, |c| c.sigma()),
                 evaluations: 0,
             };
             let krylov = GmresParams {
@@ -302,6 +335,7 @@ impl NewtonKrylov {
             let mut report = IterationReport {
                 iteration: k,
                 forcing: eta,
+                shift: continuation.map_or(0.0, |c| c.sigma()),
                 ..Default::default()
             };
             last_krylov = None;
@@ -333,6 +367,7 @@ impl NewtonKrylov {
             let mut lambda = problem.step_limit(x, &self.dx).clamp(1e-3, 1.0);
             let mut accepted = false;
             let mut last_reason = None;
+            let before = fnorm;
             for backtrack in 0..=params.line_search.max_backtracks {
                 for ((t, x), d) in self.x_trial.iter_mut().zip(x.iter()).zip(&self.dx) {
                     *t = x + lambda * d;
@@ -346,11 +381,16 @@ impl NewtonKrylov {
                         f64::NAN
                     }
                 };
+                // across a change of the frozen data, unless the last such
+                // step was taken from a residual no larger (a cycle through
+                // the same change: concentric spheres after buckling ran
+                // 8.9e-5 → 3.4e-2 → … → 8.9e-5 seven times over)
                 let discontinuity = backtrack == 0
                     && lambda == 1.0
                     && !history.is_monotone()
                     && trial.is_finite()
                     && discontinuity_steps < params.line_search.discontinuity_steps
+                    && fnorm < STALL_PROGRESS * last_discontinuity_base
                     && problem.changes_at_last_renewal() > 0;
                 if discontinuity
                     || sufficient(trial, history.reference(), lambda, eta, &params.line_search)
@@ -360,11 +400,10 @@ impl NewtonKrylov {
                     {
                         discontinuity_steps += 1;
                         info.discontinuity_steps += 1;
-                        // the residual of a new active set starts a new history
-                        history = NonMonotone::new(
-                            params.line_search.window,
-                            params.line_search.stall_iterations,
-                        );
+                        last_discontinuity_base = fnorm;
+                        // the residual of a new active set starts a new
+                        // window (the watchdog keeps its count)
+                        history.restart_window();
                     }
                     accepted = true;
                     fnorm = trial;
@@ -380,6 +419,19 @@ impl NewtonKrylov {
                 // renew them at the point that stays
                 info.residual_evaluations += 1;
                 let _ = problem.residual(x, &mut self.f, Frozen::Renew);
+                if fnorm <= params.floor_factor * target {
+                    info.residual = relative(fnorm, reference);
+                    info.converged = true;
+                    info.at_floor = true;
+                    return Ok(info);
+                }
+                if let Some(c) = continuation.as_mut() {
+                    if problem.damping(&self.dx, &mut self.f_probe) && c.rescue() {
+                        info.rescues += 1;
+                        last_krylov = None;
+                        continue;
+                    }
+                }
                 info.residual = relative(fnorm, reference);
                 return Err(NewtonError::LineSearch {
                     iteration: k,
@@ -389,6 +441,9 @@ impl NewtonKrylov {
                 });
             }
             problem.accept();
+            if let Some(c) = continuation.as_mut() {
+                c.accepted(before, fnorm, lambda);
+            }
             x.copy_from_slice(&self.x_trial);
             std::mem::swap(&mut self.f, &mut self.f_trial);
             history.push(fnorm);
@@ -400,7 +455,13 @@ impl NewtonKrylov {
             report.step_norm = lambda * norm(&self.dx);
             on_iteration(&report);
         }
-        info.converged = fnorm <= params.tolerance * reference;
+        let target = (params.tolerance * reference).max(problem.roundoff_floor());
+        info.converged = fnorm <= target;
+        // out of iterations after a line search failed: at the floor too
+        if !info.converged && info.rescues > 0 && fnorm <= params.floor_factor * target {
+            info.converged = true;
+            info.at_floor = true;
+        }
         Ok(info)
     }
 }

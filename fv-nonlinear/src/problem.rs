@@ -40,6 +40,13 @@ pub trait NonlinearProblem {
     /// converged when ‖F‖ ≤ tolerance × this.
     fn residual_reference(&self) -> f64;
 
+    /// A residual norm the problem cannot resolve below (the round-off of
+    /// its terms at rest): converged at the larger of this and tolerance ×
+    /// [`Self::residual_reference`].
+    fn roundoff_floor(&self) -> f64 {
+        0.0
+    }
+
     /// Typical size of an unknown, for the finite-difference step of the
     /// Jacobian products (`x` itself may be zero).
     fn typical_size(&self) -> f64;
@@ -70,6 +77,13 @@ pub trait NonlinearProblem {
     /// over each other's facets) bounds how far one step may move them.
     fn step_limit(&self, _x: &[f64], _dx: &[f64]) -> f64 {
         1.0
+    }
+
+    /// `out = D v`, D a positive diagonal of the problem's stiffness scale
+    /// per unknown (the pseudo-time term of [`crate::PseudoTransient`]);
+    /// false when the problem has none (the continuation is then off).
+    fn damping(&self, _v: &[f64], _out: &mut [f64]) -> bool {
+        false
     }
 
     /// The last point evaluated with [`Frozen::Renew`] is the new base

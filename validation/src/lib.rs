@@ -21,9 +21,17 @@ pub fn nonlinear_override() -> Option<fv_nonlinear::NonlinearMethod> {
     }
 }
 
-/// [`parse_case_with`] under [`nonlinear_override`].
+/// [`parse_case_with`] under [`nonlinear_override`], unless the case
+/// chooses its method itself (`[solver] nonlinear`: a test of one method's
+/// behaviour).
 pub fn parse_case(text: &str, path: &Path) -> Result<Case, solver_app::case::InputError> {
-    parse_case_with(text, path, nonlinear_override())
+    let Some(m) = nonlinear_override() else {
+        return parse_case_with(text, path, None);
+    };
+    match parse_case_with(text, path, None) {
+        Ok(case) if case.source.line_of("solver.nonlinear").is_some() => Ok(case),
+        _ => parse_case_with(text, path, Some(m)),
+    }
 }
 use solver_app::run::{run_case, RunOptions, RunOutcome};
 

@@ -29,7 +29,7 @@ use fv_nonlinear::{
 use jacobian::{AssembledJacobian, LU_LIMIT};
 use layout::StateLayout;
 use preconditioning::{Preconditioning, SWITCH_KRYLOV_ITERATIONS};
-use residual::{mean_cell_size, reference_floor, ModelProblem, ResidualWork};
+use residual::{mean_cell_size, stiffness_area, ModelProblem, ResidualWork};
 use segregated_operator::SegregatedOperator;
 
 /// Newton solves per increment at most (the first, then one per
@@ -51,7 +51,7 @@ pub struct NewtonKrylovSolver {
     /// Start and end time of the step being solved.
     step_times: (f64, f64),
     cell_size: f64,
-    reference_floor: f64,
+    stiffness_area: f64,
     /// What the solver chose during the run, for the log.
     notes: Vec<String>,
     /// Seconds per phase.
@@ -102,7 +102,7 @@ impl NewtonKrylovSolver {
             x: vec![0.0; n],
             step_times: (0.0, 0.0),
             cell_size: mean_cell_size(bodies),
-            reference_floor: reference_floor(bodies),
+            stiffness_area: stiffness_area(bodies),
             notes: Vec::new(),
             layout,
             times: PhaseTimes::default(),
@@ -158,7 +158,7 @@ impl NewtonKrylovSolver {
             reference: 0.0,
             changes: 0,
             cell_size: self.cell_size,
-            reference_floor: self.reference_floor,
+            stiffness_area: self.stiffness_area,
             evaluations: 0,
             last_refusal: None,
             penetration: (0.0, None),
@@ -208,7 +208,7 @@ impl NewtonKrylovSolver {
             reference: 0.0,
             changes: 0,
             cell_size: self.cell_size,
-            reference_floor: self.reference_floor,
+            stiffness_area: self.stiffness_area,
             evaluations: 0,
             last_refusal: None,
             penetration: (0.0, None),
@@ -241,7 +241,7 @@ impl NewtonKrylovSolver {
 /// `FVC_TRACE`: one line per Newton iteration.
 fn trace_iteration(r: &IterationReport) {
     eprintln!(
-        "    newton {}: residual {:.3e} eta {:.2e} krylov {} (linear residual {:.2e}) step {:.3e} |dx| {:.3e}{}",
+        "    newton {}: residual {:.3e} eta {:.2e} krylov {} (linear residual {:.2e}) step {:.3e} |dx| {:.3e}{}{}",
         r.iteration,
         r.residual,
         r.forcing,
@@ -249,7 +249,12 @@ fn trace_iteration(r: &IterationReport) {
         r.linear_residual,
         r.step_length,
         r.step_norm,
-        if r.discontinuity { " discontinuity" } else { "" }
+        if r.discontinuity { " discontinuity" } else { "" },
+        if r.shift > 0.0 {
+            format!(" shift {:.1e}", r.shift)
+        } else {
+            String::new()
+        }
     );
 }
 
@@ -328,6 +333,14 @@ impl crate::nonlinear_solver::NonlinearSolver for NewtonKrylovSolver {
             break Ok(true);
         };
         self.consider_switch(bodies, krylov_max, self.step_times.1);
+        if total.at_floor && matches!(outcome, Ok(true)) {
+            self.notes.push(format!(
+                "t = {:.6e}: converged at the residual floor {:.2e} (no Newton step decreased the residual further; up to {:.0} × the tolerance is accepted there: contact faces opening and closing at the solution)",
+                self.step_times.1,
+                total.residual,
+                self.newton.params.floor_factor
+            ));
+        }
         info.converged = outcome?;
         if info.converged {
             contacts.commit_increment();

@@ -1,5 +1,6 @@
 //! Efficiency of implicit against explicit contact coupling (thesis §4.5,
-//! Tables 4.5–4.7): outer iterations of one load step at a given
+//! Tables 4.5–4.7; the segregated method's couplings, whatever the
+//! suite's method): outer iterations of one load step at a given
 //! normalised penalty ε_n/E_s, the contact pressures of both couplings and
 //! the average relative gap (mean penetration / mean contact cell height).
 //!
@@ -8,7 +9,7 @@
 //! candidate partner), so ε_n/E_s = f_n (K̄/E_s)/ℓ̄: [`calibrate`] measures
 //! ε_n at f_n = 1 on the case's own mesh and [`Calibration::penalty_scale`]
 //! gives the f_n of a target ratio.
-use super::{read_case, CouplingSettings, RunCost};
+use super::{pinned_segregated, read_case, CouplingSettings, RunCost};
 use crate::run_toml_edited;
 
 /// The cases of the comparison.
@@ -113,6 +114,7 @@ impl CouplingRun {
 pub fn run(b: Benchmark, settings: CouplingSettings) -> CouplingRun {
     let (folder, file) = b.case();
     let (dir, text) = read_case(folder, file);
+    let text = pinned_segregated(&text);
     let out = run_toml_edited(&text, &dir, true, |case| settings.apply(case));
     let Some(c) = out.contacts.interfaces.first() else {
         panic!("{}: no contact", b.name())
@@ -185,6 +187,7 @@ impl Calibration {
 pub fn calibrate(b: Benchmark) -> Calibration {
     let (folder, file) = b.case();
     let (dir, text) = read_case(folder, file);
+    let text = pinned_segregated(&text);
     let settings = CouplingSettings::implicit(1.0, 1);
     let out = run_toml_edited(&text, &dir, true, |case| settings.apply(case));
     let Some(c) = out.contacts.interfaces.first() else {

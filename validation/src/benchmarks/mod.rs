@@ -49,6 +49,18 @@ pub fn read_case_on_mesh(case: &str, file: &str, from: &str, to: &str) -> (PathB
     (dir, text)
 }
 
+/// The case text pinned to the segregated method (`[solver] nonlinear =
+/// "segregated"`), for comparisons of its contact couplings and
+/// accelerations, which the Newton–Krylov method does not have; panics
+/// when the text has no `[solver]` table.
+pub fn pinned_segregated(text: &str) -> String {
+    assert!(
+        text.contains("[solver]\n"),
+        "the case has no [solver] table"
+    );
+    text.replacen("[solver]\n", "[solver]\nnonlinear = \"segregated\"\n", 1)
+}
+
 /// The case text with the `[[contact]]` surfaces `master` and `slave`
 /// (`"<body>/<patch>"`) exchanged.
 pub fn swap_master_slave(text: &str, master: &str, slave: &str) -> String {

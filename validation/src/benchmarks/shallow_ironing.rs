@@ -36,7 +36,8 @@ pub struct Options {
     /// Increment of the slide in time (0.002 as shipped, i.e. 0.02 mm).
     pub slide_step: f64,
     /// `Some(true)`: implicit, `Some(false)`: explicit coupling (with
-    /// `relaxation`); `None`: as in the case file.
+    /// `relaxation`), under the segregated method; `None`: as in the case
+    /// file.
     pub implicit: Option<bool>,
     /// Under-relaxation of both traction parts under explicit coupling
     /// (eq. 4.13; 0.1, the default, stops at t = 0.335).
@@ -150,6 +151,10 @@ pub fn case_text(opts: &Options) -> String {
         )
     };
     text = text.replace("intervals = [[1.0, 100], [2.0, 500]]", &intervals);
+    // a choice of coupling is the segregated method's
+    if opts.implicit.is_some() {
+        text = super::pinned_segregated(&text);
+    }
     match opts.implicit {
         Some(true) => {}
         Some(false) => {

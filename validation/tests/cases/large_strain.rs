@@ -860,7 +860,11 @@ fn patch_point_radius(body: &solver_app::model::Body, patch: &str) -> f64 {
 /// (`neo_hookean_pressurised_tube`). The pressure follows the faces as the
 /// increment moves their points. Measured (20 × 30 cells): r_i 1.555385
 /// against 1.555618 (−0.04 % of u_i), r_o −0.03 % of u_o; the held
-/// increment moves r_i by 5e-6. Before, when the pressure acted on the
+/// increment moves r_i by 5e-6 (the segregated method, whose first
+/// increment is cut back into two halves) or 1.4e-4 (Newton–Krylov, one
+/// step: 1.555551, then 1.555689, +0.013 %; solved along the segregated
+/// path, the same 2e-9 apart — the updated-Lagrangian discretisation
+/// depends on the path by this much). Before, when the pressure acted on the
 /// face gradient's Nanson area (whose hoop stretch is the owner cell's),
 /// one increment gave r_i = 1.54041 (−2.7 % of u_i), and the held
 /// increment moved it to 1.55552.
@@ -924,10 +928,19 @@ type = "empty"
         "r_o off by {:.3} % of u_o",
         100.0 * err_o
     );
+    // the held increment re-solves the balance on the moved mesh: it may
+    // move r_i by a fraction of the discretisation error (2e-4 here), not
+    // away from the exact radius
     assert!(
-        (ri2 - ri1).abs() < 1e-4,
+        (ri2 - ri1).abs() < 3e-4,
         "held increment moved r_i by {}",
         ri2 - ri1
+    );
+    let err_held = (ri2 - ra) / (ra - 1.0);
+    assert!(
+        err_held.abs() < 2e-3,
+        "held r_i off by {:.3} % of u_i",
+        100.0 * err_held
     );
 }
 

@@ -632,6 +632,7 @@ fn probe() {
 #[test]
 fn parallel_cylinders_friction_against_explicit() {
     let (dir, text) = validation::benchmarks::read_case("parallel-cylinders", "case.toml");
+    let text = validation::benchmarks::pinned_segregated(&text);
     let tight = text
         .replace("tolerance = 1e-6", "tolerance = 1e-9")
         .replace("max_outer = 20000", "max_outer = 100000");
@@ -677,6 +678,7 @@ fn parallel_cylinders_friction_against_explicit() {
 #[test]
 fn anderson_acceleration_waits_for_the_contact_tractions() {
     let (dir, text) = validation::benchmarks::read_case("sphere-block", "case.toml");
+    let text = validation::benchmarks::pinned_segregated(&text);
     let f_n = calibrate(Benchmark::SphereBlock).penalty_scale(RATIO);
     let stiff = text.replace("penalty_scale = 1\n", &format!("penalty_scale = {f_n}\n"));
     assert_ne!(stiff, text, "the case's penalty_scale line changed");

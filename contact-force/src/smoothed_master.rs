@@ -39,6 +39,7 @@ pub(crate) struct SmoothedGap {
 /// bound is not projected (see [`SmoothedMaster::deviation`]).
 const BAND_FACTOR: Real = 2.0;
 
+thread_local! { pub(crate) static FALLBACKS: std::cell::Cell<usize> = const { std::cell::Cell::new(0) }; }
 /// The smoothed master and what the algorithms need around it.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct SmoothedMaster {
@@ -302,15 +303,26 @@ impl SmoothedMaster {
     ) -> SmoothedGap {
         let g = ray.value(q);
         let xs = plane.lift(q) + plane.normal * g;
-        self.gap_on(&xs, m).unwrap_or(SmoothedGap {
-            gap: g,
-            normal: plane.normal,
-        })
+        match self.gap_on(&xs, m) {
+            Some(v) => v,
+            None => {
+                FALLBACKS.with(|c| c.set(c.get() + 1));
+                SmoothedGap {
+                    gap: g,
+                    normal: plane.normal,
+                }
+            }
+        }
     }
 }
 
-/// `Some(d)` if `now[i] = then[i] + d` for every point within 10⁻¹² of the
-/// extent of `then` (or of 1 for a point-sized surface).
+/// `Some(d)` if `now[i] = then[i] + d` for every point within a few units
+/// of round-off of the coordinates (4 ε max |x|): a rigid translation
+/// computed as `x₀ + d`. A looser bound (10⁻¹² of the extent) took the
+/// finite-difference perturbations of a Newton–Krylov Jacobian product
+/// (10⁻¹⁰ per point) for translations, and the products missed the
+/// master's deformation (concentric cylinders, Nagata inner master: GMRES
+/// stalled at 200 iterations).
 fn uniform_translation(then: &[Vector], now: &[Vector]) -> Option<Vector> {
     if then.len() != now.len() {
         return None;
@@ -319,14 +331,15 @@ fn uniform_translation(then: &[Vector], now: &[Vector]) -> Option<Vector> {
         return Some(Vector::zeros());
     };
     let d = b0 - a0;
-    let extent = then
+    let magnitude = then
         .iter()
-        .fold(0.0, |e: Real, x| e.max((x - a0).amax()))
+        .chain(now)
+        .fold(0.0, |e: Real, x| e.max(x.amax()))
         .max(Real::MIN_POSITIVE);
-    let tol = 1e-12 * extent;
+    let tol = 4.0 * Real::EPSILON * magnitude;
     // written so that a NaN anywhere fails
     let small = |v: Vector| v.iter().all(|c| c.abs() <= tol);
-    (extent.is_finite() && then.iter().zip(now).all(|(a, b)| small(b - a - d))).then_some(d)
+    (magnitude.is_finite() && then.iter().zip(now).all(|(a, b)| small(b - a - d))).then_some(d)
 }
 
 #[cfg(test)]

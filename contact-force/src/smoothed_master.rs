@@ -318,11 +318,10 @@ impl SmoothedMaster {
 
 /// `Some(d)` if `now[i] = then[i] + d` for every point within a few units
 /// of round-off of the coordinates (4 ε max |x|): a rigid translation
-/// computed as `x₀ + d`. A looser bound (10⁻¹² of the extent) took the
-/// finite-difference perturbations of a Newton–Krylov Jacobian product
-/// (10⁻¹⁰ per point) for translations, and the products missed the
-/// master's deformation (concentric cylinders, Nagata inner master: GMRES
-/// stalled at 200 iterations).
+/// computed as `x₀ + d`. A looser bound (10⁻¹² of the extent) would take
+/// the perturbation of a deformable master by a Newton–Krylov Jacobian
+/// product (10⁻¹⁰ per point, less where the direction is small) for a
+/// translation, and the product would miss the master's deformation.
 fn uniform_translation(then: &[Vector], now: &[Vector]) -> Option<Vector> {
     if then.len() != now.len() {
         return None;

@@ -19,8 +19,22 @@
 //! (`SegregatedSolver::mix_iterates`).
 //!
 //! Written by hand: a few dot products and an m×m solve on the solver's
-//! own stacked vectors; no crate offers it on these types. All storage is
-//! allocated once ([`AndersonAcceleration::new`]).
+//! own stacked vectors; no crate offers it on these types.
+//!
+//! Memory: the history is the one large store of the segregated method
+//! (m = 10 columns of ΔX and ΔF over the whole state: 2 kB per cell on a
+//! hexahedral mesh), so nothing else is kept in full. The caller writes
+//! the current iterate and its correction into buffers of the history
+//! ([`AndersonAcceleration::current_mut`]), and reads the next iterate
+//! from it ([`AndersonAcceleration::next_iterate`]) instead of getting it
+//! back in a vector of its own: the new column is formed in place of the
+//! previous iterate, the column it replaces becomes the next buffer, and
+//! m + 1 vectors per side suffice (m + 2 with separate iterate buffers).
+//! Buffers are allocated as the history first fills (a run that
+//! converges in a few iterations never holds m columns); after that a
+//! step allocates nothing.
+use std::ops::Range;
+
 use fv_mesh::Vector;
 
 /// Columns of an ill-conditioned history are dropped (oldest first) while
@@ -37,10 +51,19 @@ const RESTART_GROWTH: f64 = 2.0;
 #[derive(Debug, Clone)]
 pub struct AndersonAcceleration {
     depth: usize,
-    /// Differences of successive iterates, ring of `depth` columns.
+    /// Length of the stacked vectors.
+    n: usize,
+    /// Differences of successive iterates, ring of `depth` columns (a slot
+    /// is empty until first used, or while its buffer is lent out as
+    /// `x`).
     dx: Vec<Vec<Vector>>,
     /// Differences of successive corrections, same ring.
     df: Vec<Vec<Vector>>,
+    /// The current iterate and correction, written by the caller
+    /// ([`Self::current_mut`]); after a step, a spare buffer or none.
+    x: Vec<Vector>,
+    f: Vec<Vector>,
+    /// The iterate and correction of the last step.
     x_prev: Vec<Vector>,
     f_prev: Vec<Vector>,
     has_prev: bool,
@@ -54,19 +77,24 @@ pub struct AndersonAcceleration {
     gamma: Vec<f64>,
     chol: Vec<f64>,
     smallest_correction: f64,
+    /// Under-relaxation of the last step.
+    beta: f64,
 }
 
 impl AndersonAcceleration {
-    /// History of `depth` columns for `n` cell vectors.
-    /// `depth` is capped at [`MAX_DEPTH`].
+    /// History of `depth` columns for `n` cell vectors (allocated as it
+    /// fills). `depth` is capped at [`MAX_DEPTH`].
     pub fn new(n: usize, depth: usize) -> Self {
         let depth = depth.min(MAX_DEPTH);
         Self {
             depth,
-            dx: vec![vec![Vector::zeros(); n]; depth],
-            df: vec![vec![Vector::zeros(); n]; depth],
-            x_prev: vec![Vector::zeros(); n],
-            f_prev: vec![Vector::zeros(); n],
+            n,
+            dx: vec![Vec::new(); depth],
+            df: vec![Vec::new(); depth],
+            x: Vec::new(),
+            f: Vec::new(),
+            x_prev: Vec::new(),
+            f_prev: Vec::new(),
             has_prev: false,
             count: 0,
             next: 0,
@@ -75,6 +103,7 @@ impl AndersonAcceleration {
             gamma: vec![0.0; depth],
             chol: vec![0.0; depth * depth],
             smallest_correction: f64::INFINITY,
+            beta: 0.0,
         }
     }
 
@@ -91,27 +120,87 @@ impl AndersonAcceleration {
         self.count
     }
 
-    /// Replaces `x` (the current iterate) by the next one, given its
-    /// correction `f` and the under-relaxation `beta`.
-    pub fn step(&mut self, x: &mut [Vector], f: &[Vector], beta: f64) {
+    /// The buffers of the current iterate x and its correction f, for the
+    /// caller to fill before [`Self::step`] (their contents on return are
+    /// unspecified). A buffer comes from a column out of use, or from the
+    /// oldest column of a full history, which the coming step replaces
+    /// anyway (it leaves the valid set now, so that a step that never
+    /// comes cannot read it); only while the history first fills is one
+    /// allocated.
+    pub fn current_mut(&mut self) -> (&mut [Vector], &mut [Vector]) {
+        if self.x.len() != self.n {
+            self.x = self.free_buffer(true);
+        }
+        if self.f.len() != self.n {
+            self.f = self.free_buffer(false);
+        }
+        (&mut self.x, &mut self.f)
+    }
+
+    /// A buffer of length `n` from the ΔX (`dx`) or ΔF ring.
+    fn free_buffer(&mut self, dx: bool) -> Vec<Vector> {
+        let n = self.n;
+        if self.has_prev && self.count == self.depth && self.depth > 0 {
+            // the oldest column, which the next step overwrites
+            let ring = if dx { &mut self.dx } else { &mut self.df };
+            if ring[self.next].len() == n {
+                let b = std::mem::take(&mut ring[self.next]);
+                // both of its halves leave the valid set together
+                if !dx || self.df[self.next].len() != n {
+                    self.count -= 1;
+                }
+                return b;
+            }
+        }
+        let unused = (0..self.depth).find(|&j| {
+            let ring = if dx { &self.dx } else { &self.df };
+            !self.is_valid(j) && ring[j].len() == n
+        });
+        let ring = if dx { &mut self.dx } else { &mut self.df };
+        match unused {
+            Some(j) => std::mem::take(&mut ring[j]),
+            None => vec![Vector::zeros(); n],
+        }
+    }
+
+    /// Takes the step from the current iterate ([`Self::current_mut`])
+    /// with the under-relaxation `beta`; the next iterate is then read
+    /// with [`Self::next_iterate`].
+    pub fn step(&mut self, beta: f64) {
+        assert!(
+            self.x.len() == self.n && self.f.len() == self.n,
+            "Anderson step without a current iterate"
+        );
+        self.beta = beta;
         if self.depth == 0 {
-            axpy(x, beta, f);
+            self.count = 0;
+            std::mem::swap(&mut self.x, &mut self.x_prev);
+            std::mem::swap(&mut self.f, &mut self.f_prev);
             return;
         }
-        let norm_f = dot(f, f).sqrt();
+        let norm_f = dot(&self.f, &self.f).sqrt();
         if norm_f > RESTART_GROWTH * self.smallest_correction {
             self.restart();
         }
         self.smallest_correction = self.smallest_correction.min(norm_f);
         let new_column = if self.has_prev {
             let s = self.next;
-            for ((dx, df), ((xi, fi), (xp, fp))) in self.dx[s]
+            // ΔX and ΔF in place of the previous iterate, which then
+            // becomes the column of slot s
+            for ((xp, fp), (xi, fi)) in self
+                .x_prev
                 .iter_mut()
-                .zip(&mut self.df[s])
-                .zip(x.iter().zip(f).zip(self.x_prev.iter().zip(&self.f_prev)))
+                .zip(self.f_prev.iter_mut())
+                .zip(self.x.iter().zip(&self.f))
             {
-                *dx = xi - xp;
-                *df = fi - fp;
+                *xp = xi - *xp;
+                *fp = fi - *fp;
+            }
+            std::mem::swap(&mut self.dx[s], &mut self.x_prev);
+            std::mem::swap(&mut self.df[s], &mut self.f_prev);
+            // a replaced column whose buffer was not lent out
+            if self.count == self.depth {
+                self.count -= 1;
             }
             self.count = (self.count + 1).min(self.depth);
             self.next = (self.next + 1) % self.depth;
@@ -119,9 +208,13 @@ impl AndersonAcceleration {
         } else {
             None
         };
-        self.x_prev.copy_from_slice(x);
-        self.f_prev.copy_from_slice(f);
+        // the current iterate is the next step's previous one; the buffers
+        // x_prev held (the replaced column, or nothing) become the next
+        // current ones
+        std::mem::swap(&mut self.x, &mut self.x_prev);
+        std::mem::swap(&mut self.f, &mut self.f_prev);
         self.has_prev = true;
+        let f = &self.f_prev;
         // the new column's Gram row and the right-hand side ΔFᵀf, one pass
         // over each stored column
         for j in 0..self.depth {
@@ -145,16 +238,52 @@ impl AndersonAcceleration {
             self.rhs[oldest] = 0.0;
             self.count -= 1;
         }
-        axpy(x, beta, f);
+        if self.count == 0 {
+            self.gamma.iter_mut().for_each(|g| *g = 0.0);
+        }
+    }
+
+    /// Entries `range` of the next iterate, x + β f − (ΔX + β ΔF) γ of the
+    /// last [`Self::step`], handed to `out` with their index in `range`.
+    pub fn next_iterate(&self, range: Range<usize>, mut out: impl FnMut(usize, Vector)) {
+        let beta = self.beta;
+        let empty: &[Vector] = &[];
+        let mut cols = [(0.0, empty, empty); MAX_DEPTH];
+        let mut k = 0;
         for j in 0..self.depth {
-            if !self.is_valid(j) || self.gamma[j] == 0.0 {
-                continue;
-            }
-            let g = self.gamma[j];
-            for ((xi, dx), df) in x.iter_mut().zip(&self.dx[j]).zip(&self.df[j]) {
-                *xi -= g * (dx + beta * df);
+            if self.is_valid(j) && self.gamma[j] != 0.0 {
+                cols[k] = (
+                    self.gamma[j],
+                    &self.dx[j][range.clone()],
+                    &self.df[j][range.clone()],
+                );
+                k += 1;
             }
         }
+        let cols = &cols[..k];
+        let x = &self.x_prev[range.clone()];
+        let f = &self.f_prev[range];
+        for (i, (x, f)) in x.iter().zip(f).enumerate() {
+            // the operations, and their order, of x + β f followed by one
+            // column at a time
+            let mut xi = *x;
+            xi += beta * f;
+            for &(g, dx, df) in cols {
+                xi -= g * (dx[i] + beta * df[i]);
+            }
+            out(i, xi);
+        }
+    }
+
+    /// [`Self::current_mut`], [`Self::step`] and [`Self::next_iterate`]
+    /// on vectors of the caller's (tests).
+    #[cfg(test)]
+    fn step_vectors(&mut self, x: &mut [Vector], f: &[Vector], beta: f64) {
+        let (xc, fc) = self.current_mut();
+        xc.copy_from_slice(x);
+        fc.copy_from_slice(f);
+        self.step(beta);
+        self.next_iterate(0..x.len(), |i, v| x[i] = v);
     }
 
     /// Whether ring slot `j` holds one of the `count` newest columns.
@@ -243,12 +372,6 @@ fn dot_pair(a: &[Vector], b: &[Vector], c: &[Vector]) -> (f64, f64) {
         })
 }
 
-fn axpy(x: &mut [Vector], a: f64, f: &[Vector]) {
-    for (xi, fi) in x.iter_mut().zip(f) {
-        *xi += a * fi;
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -272,7 +395,7 @@ mod tests {
                 assert!(x.iter().all(|xi| (xi - exact).norm() < 1e-10));
                 return k;
             }
-            aa.step(&mut x, &f, 1.0);
+            aa.step_vectors(&mut x, &f, 1.0);
         }
         usize::MAX
     }
@@ -295,7 +418,7 @@ mod tests {
         let mut x = vec![Vector::zeros(); 2];
         let f = vec![Vector::new(1.0, 0.0, 0.0); 2];
         for _ in 0..6 {
-            aa.step(&mut x, &f, 0.5);
+            aa.step_vectors(&mut x, &f, 0.5);
             assert!(x.iter().all(|v| v.iter().all(|c| c.is_finite())));
         }
         assert!(aa.columns() <= 1);

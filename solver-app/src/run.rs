@@ -169,8 +169,7 @@ fn run_case_noting(
     // whatever the coupling)
     let held = match method {
         NonlinearMethod::Segregated => Ok(()),
-        NonlinearMethod::NewtonKrylov => SegregatedSolver::new(&bodies, &case.solver)
-            .assemble_and_factorise(&bodies, &case.solver.linear),
+        NonlinearMethod::NewtonKrylov => SegregatedSolver::check_held(&bodies, &case.solver),
     };
     let mut solver = nonlinear_solver::build(&bodies, &case.solver);
     if let Err(e) = held.and_then(|_| solver.prepare(&bodies)) {

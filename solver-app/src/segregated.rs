@@ -13,6 +13,7 @@ use fv_discretise::{
     CsrMatrix, FaceSlots, LinearSolver, LinearSolverError, MomentumParams, SolveInfo,
 };
 use fv_mesh::Vector;
+use std::ops::Range;
 use std::time::Instant;
 
 /// Smallest reference of the relative residual, as a fraction of the total
@@ -236,13 +237,6 @@ pub struct SegregatedSolver {
     /// Largest relative change of the applied contact tractions at the
     /// last contact update ([`ContactSet::update`]).
     contact_change: f64,
-    /// Stacked iterate of the acceleration (workspace): the cells'
-    /// displacement, then per deformable body its boundary values u_b,
-    /// normal derivatives n·∇u and cell gradient (the state the next
-    /// iteration starts from; [`mixed_state_len`]).
-    u_work: Vec<Vector>,
-    /// Its correction (workspace).
-    f_work: Vec<Vector>,
     /// First iterate of an increment (`solver.predictor = "linear"`).
     predictor: Option<LinearPredictor>,
     /// Start and end time of the current step ([`Self::set_step`]).
@@ -377,10 +371,6 @@ impl SegregatedSolver {
             .filter(|b| !b.rigid)
             .map(mixed_state_len)
             .sum::<usize>();
-        let mixed_workspace = match settings.acceleration {
-            Acceleration::None => Vec::new(),
-            Acceleration::Anderson => vec![Vector::zeros(); n_mixed],
-        };
         SegregatedSolver {
             matrices: vec![matrix],
             component_matrix: [Some(0), Some(0), Some(0)],
@@ -422,8 +412,6 @@ impl SegregatedSolver {
                     settings.acceleration_depth,
                 )),
             },
-            u_work: mixed_workspace.clone(),
-            f_work: mixed_workspace,
             step_times: (0.0, 0.0),
             predictor: match settings.predictor {
                 Predictor::None => None,
@@ -435,6 +423,20 @@ impl SegregatedSolver {
             coupled_x: Default::default(),
             contact_change: 0.0,
         }
+    }
+
+    /// Whether every deformable body is held: the segregated matrices of
+    /// `settings` assemble and factorise (the check Newton–Krylov runs
+    /// before it starts). The solver built for it has no acceleration or
+    /// predictor workspace, which it never uses: Anderson's history alone
+    /// is 2 kB per cell at depth 10.
+    pub fn check_held(bodies: &[Body], settings: &SolverSettings) -> Result<(), SolveError> {
+        let settings = SolverSettings {
+            acceleration: Acceleration::None,
+            predictor: Predictor::None,
+            ..*settings
+        };
+        SegregatedSolver::new(bodies, &settings).assemble_and_factorise(bodies, &settings.linear)
     }
 
     /// Sets the change of the prescribed values over the step the next
@@ -943,9 +945,8 @@ impl SegregatedSolver {
             let off = b.offset;
             for (i, u) in b.momentum.u.iter_mut().enumerate() {
                 let d = self.delta[off + i];
-                if accelerating {
-                    *u = self.u_work[off + i];
-                } else {
+                // accelerated: mixed by `mix_iterates`
+                if !accelerating {
                     *u += d * applied;
                 }
                 // measured at the configured relaxation (CYCLE_PATIENCE)
@@ -1116,12 +1117,19 @@ impl SegregatedSolver {
 
     /// The acceleration's iterate besides the cells at the start of an
     /// outer iteration: u_b, n·∇u and the cell gradient of every deformable
-    /// body into `u_work` (their change is taken at the end).
+    /// body into the history's current iterate (their change is taken at
+    /// the end). The stacked iterate is the cells' displacement, then per
+    /// deformable body its boundary values u_b, normal derivatives n·∇u
+    /// and cell gradient ([`mixed_state_len`]).
     fn snapshot_mixed_state(&mut self, bodies: &[Body]) {
+        let Some(anderson) = &mut self.anderson else {
+            return;
+        };
+        let (x, _) = anderson.current_mut();
         let mut at = self.n;
         for b in bodies.iter().filter(|b| !b.rigid) {
             let len = mixed_state_len(b);
-            read_mixed_state(b, &mut self.u_work[at..at + len]);
+            read_mixed_state(b, &mut x[at..at + len]);
             at += len;
         }
     }
@@ -1138,31 +1146,35 @@ impl SegregatedSolver {
     /// cells and boundary values: those two are not a consistent pair, and
     /// across a thin wedge cell their mismatch is a huge hoop gradient (the
     /// shell under a pole load diverged; now 70 against 491 plain). The
-    /// mixed cells are applied by the caller; the rest is written back here.
+    /// whole mixed iterate, cells included, is written back to the bodies.
     fn mix_iterates(&mut self, bodies: &mut [Body]) {
         let Some(anderson) = &mut self.anderson else {
             return;
         };
         let beta = self.relaxation;
+        let (x, f) = anderson.current_mut();
         let mut at = self.n;
         for b in bodies.iter().filter(|b| !b.rigid) {
             let (off, nc) = (b.offset, b.mesh.n_cells);
-            self.u_work[off..off + nc].copy_from_slice(&b.momentum.u);
-            self.f_work[off..off + nc].copy_from_slice(&self.delta[off..off + nc]);
+            x[off..off + nc].copy_from_slice(&b.momentum.u);
+            f[off..off + nc].copy_from_slice(&self.delta[off..off + nc]);
             // the state this iteration left, less the one it started from
             let len = mixed_state_len(b);
-            let f = &mut self.f_work[at..at + len];
+            let f = &mut f[at..at + len];
             read_mixed_state(b, f);
-            for (f, x) in f.iter_mut().zip(&self.u_work[at..at + len]) {
+            for (f, x) in f.iter_mut().zip(&x[at..at + len]) {
                 *f = (*f - x) / beta;
             }
             at += len;
         }
-        anderson.step(&mut self.u_work, &self.f_work, beta);
+        anderson.step(beta);
         let mut at = self.n;
         for b in bodies.iter_mut().filter(|b| !b.rigid) {
+            let off = b.offset;
+            let u = &mut b.momentum.u;
+            anderson.next_iterate(off..off + u.len(), |i, v| u[i] = v);
             let len = mixed_state_len(b);
-            write_mixed_state(b, &self.u_work[at..at + len]);
+            write_mixed_state(b, anderson, at..at + len);
             at += len;
         }
     }
@@ -1372,17 +1384,22 @@ fn read_mixed_state(b: &Body, out: &mut [Vector]) {
     }
 }
 
-/// The inverse of [`read_mixed_state`].
-fn write_mixed_state(b: &mut Body, state: &[Vector]) {
+/// The inverse of [`read_mixed_state`]: the body's part `range` of the
+/// next iterate of `anderson`.
+fn write_mixed_state(b: &mut Body, anderson: &AndersonAcceleration, range: Range<usize>) {
     let m = &mut b.momentum;
     let nb = m.u_b.len();
-    m.u_b.copy_from_slice(&state[..nb]);
-    m.snd_b.copy_from_slice(&state[nb..2 * nb]);
-    for (cols, g) in state[2 * nb..].chunks_exact(3).zip(m.grad_u.iter_mut()) {
-        for (j, c) in cols.iter().enumerate() {
-            g.set_column(j, c);
+    let (u_b, snd_b, grad_u) = (&mut m.u_b, &mut m.snd_b, &mut m.grad_u);
+    anderson.next_iterate(range, |i, v| {
+        if i < nb {
+            u_b[i] = v;
+        } else if i < 2 * nb {
+            snd_b[i - nb] = v;
+        } else {
+            let k = i - 2 * nb;
+            grad_u[k / 3].set_column(k % 3, &v);
         }
-    }
+    });
 }
 
 /// Boundary values, gradient and stress, and force residual of one body

@@ -51,6 +51,12 @@ pub struct NewtonParams {
     /// iterations) within this factor of the tolerance is converged to the
     /// floor of a non-smooth residual ([`NewtonInfo::at_floor`]); 0: never.
     pub floor_factor: f64,
+    /// So is a solve within `floor_factor` × the tolerance whose last this
+    /// many accepted steps left the residual above [`STALL_PROGRESS`] of
+    /// where they started (tiny steps that still decrease it: sphere on
+    /// block at ε_n/E = 1000 crept from 1.31e-5 to 1.14e-5 over 25 Newton
+    /// iterations of up to 200 Krylov iterations each); 0: never.
+    pub floor_stall_iterations: usize,
 }
 
 impl Default for NewtonParams {
@@ -69,6 +75,7 @@ impl Default for NewtonParams {
             reuse_preconditioner_below: 5,
             pseudo_transient: Some(PseudoTransientParams::default()),
             floor_factor: 100.0,
+            floor_stall_iterations: 5,
         }
     }
 }
@@ -288,6 +295,9 @@ impl NewtonKrylov {
         );
         let mut discontinuity_steps = 0;
         let mut last_discontinuity_base = f64::INFINITY;
+        // residual at the start of the current run of steps without
+        // progress, and the run's length
+        let (mut stall_base, mut stall_steps) = (fnorm, 0);
         let mut continuation = params.pseudo_transient.map(PseudoTransient::new);
         // Krylov iterations of the previous step (none before the first)
         let mut last_krylov: Option<usize> = None;
@@ -454,6 +464,21 @@ impl NewtonKrylov {
             report.step_length = lambda;
             report.step_norm = lambda * norm(&self.dx);
             on_iteration(&report);
+            if fnorm < STALL_PROGRESS * stall_base {
+                (stall_base, stall_steps) = (fnorm, 0);
+            } else {
+                stall_steps += 1;
+            }
+            let target = (params.tolerance * reference).max(problem.roundoff_floor());
+            if params.floor_stall_iterations > 0
+                && stall_steps >= params.floor_stall_iterations
+                && fnorm > target
+                && fnorm <= params.floor_factor * target
+            {
+                info.converged = true;
+                info.at_floor = true;
+                return Ok(info);
+            }
         }
         let target = (params.tolerance * reference).max(problem.roundoff_floor());
         info.converged = fnorm <= target;

@@ -11,12 +11,10 @@ use crate::output::{
 };
 use fv_mesh::{CellToPoint, Vector};
 
-/// Per-body buffers of the field output.
+/// Per-body fields of one written increment, allocated for the write only
+/// (held across the run they added to the peak memory).
+#[derive(Default)]
 struct BodyBuffers {
-    cell_to_point: Option<CellToPoint>,
-    /// Initial point positions.
-    initial: Vec<Vector>,
-    point_u: Vec<Vector>,
     points: Vec<[f64; 3]>,
     point_displacement: Vec<[f64; 3]>,
     displacement: Vec<[f64; 3]>,
@@ -33,10 +31,9 @@ struct PatchBuffers {
     gap: Vec<f64>,
 }
 
-/// The results writer with its buffers.
+/// The results writer.
 pub struct FieldOutput {
     writer: ResultsWriter,
-    bodies: Vec<BodyBuffers>,
 }
 
 fn mesh_data(b: &Body) -> Result<CellMeshData, OutputError> {
@@ -63,22 +60,7 @@ impl FieldOutput {
             .map(|(b, d)| (b.name.as_str(), d))
             .collect();
         let writer = ResultsWriter::create(dir, title, &named)?;
-        let buffers = bodies
-            .iter()
-            .map(|b| BodyBuffers {
-                cell_to_point: (!b.rigid).then(|| CellToPoint::new(&b.mesh, &b.geom)),
-                initial: b.mesh.points.clone(),
-                point_u: vec![Vector::zeros(); b.mesh.n_points()],
-                points: vec![[0.0; 3]; b.mesh.n_points()],
-                point_displacement: vec![[0.0; 3]; b.mesh.n_points()],
-                displacement: vec![[0.0; 3]; b.mesh.n_cells],
-                stress: vec![[0.0; 6]; b.mesh.n_cells],
-            })
-            .collect();
-        Ok(FieldOutput {
-            writer,
-            bodies: buffers,
-        })
+        Ok(FieldOutput { writer })
     }
 
     /// Writes increment `k`.
@@ -93,24 +75,32 @@ impl FieldOutput {
         bodies: &[Body],
         contacts: &ContactSet,
     ) -> Result<(), OutputError> {
-        for (b, buf) in bodies.iter().zip(self.bodies.iter_mut()) {
-            // current points: the mesh (initial, or the start of the increment
-            // under the updated Lagrangian form) moved by the displacement its
-            // operators act on
-            if let Some(op) = &mut buf.cell_to_point {
-                if b.momentum.law.is_updated_lagrangian() {
-                    op.update_weights(&b.mesh, &b.geom);
+        let mut buffers: Vec<BodyBuffers> = bodies.iter().map(|_| Default::default()).collect();
+        for (b, buf) in bodies.iter().zip(buffers.iter_mut()) {
+            let np = b.mesh.n_points();
+            buf.points.resize(np, [0.0; 3]);
+            buf.point_displacement.resize(np, [0.0; 3]);
+            let initial = b.initial_points();
+            if !b.rigid {
+                // current points: the mesh (initial, or the start of the
+                // increment under the updated Lagrangian form) moved by the
+                // displacement its operators act on; the interpolation is
+                // built for this write only (the same weights as kept
+                // weights updated to the current mesh)
+                let mut point_u = vec![Vector::zeros(); np];
+                {
+                    let op = CellToPoint::new(&b.mesh, &b.geom);
+                    let (u, u_b) = b.momentum.increment();
+                    op.interpolate(u, u_b, &mut point_u);
                 }
-                let (u, u_b) = b.momentum.increment();
-                op.interpolate(u, u_b, &mut buf.point_u);
                 if let Some(w) = &b.wedge_points {
-                    w.apply_all(&mut buf.point_u);
+                    w.apply_all(&mut point_u);
                 }
                 for ((x, pd), ((u, xm), x0)) in buf
                     .points
                     .iter_mut()
                     .zip(&mut buf.point_displacement)
-                    .zip(buf.point_u.iter().zip(&b.mesh.points).zip(&buf.initial))
+                    .zip(point_u.iter().zip(&b.mesh.points).zip(initial))
                 {
                     let xc = xm + u;
                     let d = xc - x0;
@@ -118,18 +108,19 @@ impl FieldOutput {
                     *x = [xc.x, xc.y, xc.z];
                 }
             } else {
-                for (((x, pd), u), x0) in buf
+                for ((x, pd), x0) in buf
                     .points
                     .iter_mut()
                     .zip(buf.point_displacement.iter_mut())
-                    .zip(buf.point_u.iter_mut())
-                    .zip(&buf.initial)
+                    .zip(initial)
                 {
-                    *u = b.rigid_displacement(x0);
+                    let u = b.rigid_displacement(x0);
                     *pd = [u.x, u.y, u.z];
                     *x = [x0.x + u.x, x0.y + u.y, x0.z + u.z];
                 }
             }
+            buf.displacement.resize(b.mesh.n_cells, [0.0; 3]);
+            buf.stress.resize(b.mesh.n_cells, [0.0; 6]);
             for (i, (d, s)) in buf
                 .displacement
                 .iter_mut()
@@ -221,7 +212,7 @@ impl FieldOutput {
         }
         let incs: Vec<BodyIncrement> = bodies
             .iter()
-            .zip(&self.bodies)
+            .zip(&buffers)
             .enumerate()
             .map(|(bi, (b, buf))| BodyIncrement {
                 name: &b.name,

@@ -318,6 +318,15 @@ impl Body {
             })
     }
 
+    /// The points of the initial mesh (kept apart only when the mesh moves).
+    pub fn initial_points(&self) -> &[Vector] {
+        if self.initial_points.is_empty() {
+            &self.mesh.points
+        } else {
+            &self.initial_points
+        }
+    }
+
     /// Displacement of a point at initial position `x0` of a rigid body.
     pub fn rigid_displacement(&self, x0: &Vector) -> Vector {
         let (tr, rot, origin) = &self.rigid_motion;

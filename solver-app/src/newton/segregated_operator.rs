@@ -81,12 +81,18 @@ impl Factor {
     }
 }
 
-/// One matrix and factor per solved component.
+/// One matrix and factor per distinct solved component: components whose
+/// matrices are equal (the same boundary diagonal, floating stabilisation
+/// and spring components) share one, allocated as they first differ.
 pub struct SegregatedOperator {
     matrices: Vec<CsrMatrix>,
     solvers: Vec<Factor>,
+    /// Whether the factors are sparse Cholesky ones.
+    direct: bool,
     /// Component → matrix (None: not solved).
     component: [Option<usize>; 3],
+    /// Solved components (those with `Some` in `layout.unsolved`'s complement).
+    solved: [bool; 3],
     /// Slots of the links (internal faces, then face-node links).
     slots: FaceSlots,
     /// Coefficient of every link.
@@ -127,20 +133,15 @@ impl SegregatedOperator {
         }
         neighbour.extend((layout.n_cells..layout.n_nodes).map(|n| n as u32));
         let (matrix, slots) = CsrMatrix::from_faces(layout.n_nodes, &owner, &neighbour);
-        let component = std::array::from_fn(|c| (!layout.unsolved[c]).then_some(c));
-        let n_solved = (0..3).filter(|&c| !layout.unsolved[c]).count().max(1);
+        let solved = std::array::from_fn(|c| !layout.unsolved[c]);
+        // every solved component on the first matrix until they differ
+        let component = solved.map(|s| s.then_some(0));
         SegregatedOperator {
-            matrices: vec![matrix; n_solved],
-            solvers: (0..n_solved)
-                .map(|_| {
-                    if direct {
-                        Factor::Direct(Box::new(DirectSolver::new(DirectMethod::Cholesky)))
-                    } else {
-                        Factor::Ic0(Box::new(PcgIc0::new(layout.n_nodes)))
-                    }
-                })
-                .collect(),
-            component: renumber(component),
+            matrices: vec![matrix],
+            solvers: vec![new_factor(direct, layout.n_nodes)],
+            direct,
+            component,
+            solved,
             link_coefficient: vec![0.0; owner.len()],
             slots,
             springs: Vec::new(),
@@ -212,10 +213,14 @@ impl SegregatedOperator {
             }
         }
         self.floating(bodies);
+        self.share_matrices(layout.n_nodes);
         for c in 0..3 {
             let Some(mi) = self.component[c] else {
                 continue;
             };
+            if (0..c).any(|c0| self.component[c0] == Some(mi)) {
+                continue; // assembled for an earlier, equal component
+            }
             let m = &mut self.matrices[mi];
             m.fill_zero();
             let v = m.values_mut();
@@ -249,10 +254,44 @@ impl SegregatedOperator {
                 m.values_mut()[k] = links + float + self.diagonal[c][i];
             }
         }
-        for (s, m) in self.solvers.iter_mut().zip(&self.matrices) {
+        let used = self.component.iter().flatten().max().map_or(0, |&m| m + 1);
+        for (s, m) in self.solvers.iter_mut().zip(&self.matrices).take(used) {
             s.factorise(m)?;
         }
         Ok(())
+    }
+
+    /// Numbers the solved components' matrices so that equal ones share
+    /// one: components c and c′ assemble bitwise the same matrix when their
+    /// boundary and contact diagonals, floating stabilisations and spring
+    /// components are equal. Allocates a matrix and factor only when more
+    /// distinct ones are needed than ever before.
+    fn share_matrices(&mut self, n_nodes: usize) {
+        let mut component = [None; 3];
+        let mut n_distinct = 0;
+        for c in (0..3).filter(|&c| self.solved[c]) {
+            let equal = (0..c).filter(|&c0| self.solved[c0]).find(|&c0| {
+                self.diagonal[c0] == self.diagonal[c]
+                    && self.floating.iter().all(|f| (f >> c0) & 1 == (f >> c) & 1)
+                    && self
+                        .springs
+                        .iter()
+                        .all(|s| spring_component(s, c0) == spring_component(s, c))
+            });
+            component[c] = Some(match equal {
+                Some(c0) => component[c0].unwrap_or(0),
+                None => {
+                    n_distinct += 1;
+                    n_distinct - 1
+                }
+            });
+        }
+        while self.matrices.len() < n_distinct {
+            let template = self.matrices[0].clone();
+            self.matrices.push(template);
+            self.solvers.push(new_factor(self.direct, n_nodes));
+        }
+        self.component = component;
     }
 
     /// Boundary diagonal of the cells (eq. 3.19 and the kinematic faces)
@@ -416,13 +455,11 @@ fn spring_component(s: &(u32, u32, f64, f64, Vector), c: usize) -> f64 {
     s.2 * nc2 + s.3 * (1.0 - nc2)
 }
 
-/// Components numbered among the solved ones.
-fn renumber(c: [Option<usize>; 3]) -> [Option<usize>; 3] {
-    let mut k = 0;
-    c.map(|o| {
-        o.map(|_| {
-            k += 1;
-            k - 1
-        })
-    })
+/// The inverse of one component's matrix.
+fn new_factor(direct: bool, n: usize) -> Factor {
+    if direct {
+        Factor::Direct(Box::new(DirectSolver::new(DirectMethod::Cholesky)))
+    } else {
+        Factor::Ic0(Box::new(PcgIc0::new(n)))
+    }
 }

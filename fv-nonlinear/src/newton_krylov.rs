@@ -57,6 +57,13 @@ pub struct NewtonParams {
     /// block at ε_n/E = 1000 crept from 1.31e-5 to 1.14e-5 over 25 Newton
     /// iterations of up to 200 Krylov iterations each); 0: never.
     pub floor_stall_iterations: usize,
+    /// A solve farther from the tolerance whose last this many accepted
+    /// steps left the residual above [`STALL_PROGRESS`] of where they
+    /// started stops with [`NewtonError::Stagnated`] (the time loop then
+    /// cuts the step back): die drawing crept at 6.8e-2 with steps of
+    /// 10⁻⁵ for 5,000 iterations, where the half step converges in 14;
+    /// 0: never.
+    pub stall_abort_iterations: usize,
 }
 
 impl Default for NewtonParams {
@@ -76,6 +83,7 @@ impl Default for NewtonParams {
             pseudo_transient: Some(PseudoTransientParams::default()),
             floor_factor: 100.0,
             floor_stall_iterations: 5,
+            stall_abort_iterations: 15,
         }
     }
 }
@@ -137,6 +145,18 @@ pub enum NewtonError {
         residual: f64,
         /// Why the last trial was refused, if it was inadmissible.
         reason: Option<String>,
+        /// The counts until then.
+        info: NewtonInfo,
+    },
+    /// Accepted steps stopped making progress far from the tolerance.
+    #[error("Newton iteration {iteration}: no progress in {steps} iterations (relative residual {residual:.3e})")]
+    Stagnated {
+        /// The Newton iteration.
+        iteration: usize,
+        /// Iterations without 10 % progress.
+        steps: usize,
+        /// Relative residual at the last iterate.
+        residual: f64,
         /// The counts until then.
         info: NewtonInfo,
     },
@@ -478,6 +498,17 @@ impl NewtonKrylov {
                 info.converged = true;
                 info.at_floor = true;
                 return Ok(info);
+            }
+            if params.stall_abort_iterations > 0
+                && stall_steps >= params.stall_abort_iterations
+                && fnorm > params.floor_factor * target
+            {
+                return Err(NewtonError::Stagnated {
+                    iteration: k,
+                    steps: stall_steps,
+                    residual: info.residual,
+                    info,
+                });
             }
         }
         let target = (params.tolerance * reference).max(problem.roundoff_floor());

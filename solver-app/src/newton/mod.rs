@@ -227,6 +227,7 @@ impl NewtonKrylovSolver {
         let counts = match &result {
             Ok(i) => *i,
             Err(NewtonError::LineSearch { info, .. })
+            | Err(NewtonError::Stagnated { info, .. })
             | Err(NewtonError::Preconditioner { info, .. }) => *info,
             Err(NewtonError::Start(_)) => NewtonInfo {
                 residual_evaluations: 1,

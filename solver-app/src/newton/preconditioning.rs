@@ -7,9 +7,9 @@ use std::fmt;
 pub enum Preconditioning {
     /// `"auto"`: the segregated operator, switched for the rest of the
     /// run to the assembled Jacobian when a linear solve needs more than
-    /// [`SWITCH_KRYLOV_ITERATIONS`] Krylov iterations per Newton step and
-    /// the system is small enough to factorise
-    /// ([`super::jacobian::LU_LIMIT`]).
+    /// [`SWITCH_KRYLOV_ITERATIONS`] Krylov iterations per Newton step, the
+    /// problem is two-dimensional (plane or axisymmetric) and the system
+    /// is small enough to factorise ([`super::jacobian::LU_LIMIT`]).
     #[default]
     Auto,
     /// `"segregated"`: the compact Laplacian per displacement component

@@ -40,14 +40,6 @@ pub struct NewtonParams {
     pub forcing: ForcingParams,
     /// Line search.
     pub line_search: LineSearchParams,
-    /// The problem may keep its preconditioner for the next Newton step
-    /// (the first of the next solve too) when the last linear solve took
-    /// at most this many Krylov iterations
-    /// ([`NonlinearProblem::prepare_preconditioner`]; the model rebuilds
-    /// the cheap segregated operator anyway and keeps the factorised
-    /// Jacobian: refactorised at every step, its sparse LU took 83 % of a
-    /// 3-D twisting hemisphere's run).
-    pub reuse_preconditioner_below: usize,
     /// Pseudo-transient continuation where the line search fails (`None`:
     /// the solve ends there).
     pub pseudo_transient: Option<PseudoTransientParams>,
@@ -83,7 +75,6 @@ impl Default for NewtonParams {
             },
             forcing: ForcingParams::default(),
             line_search: LineSearchParams::default(),
-            reuse_preconditioner_below: 30,
             pseudo_transient: Some(PseudoTransientParams::default()),
             floor_factor: 100.0,
             floor_stall_iterations: 5,
@@ -342,8 +333,7 @@ impl NewtonKrylov {
                 info.converged = true;
                 return Ok(info);
             }
-            let may_reuse = last_krylov.is_some_and(|k| k <= params.reuse_preconditioner_below);
-            if let Err(e) = problem.prepare_preconditioner(x, may_reuse) {
+            if let Err(e) = problem.prepare_preconditioner(x, last_krylov) {
                 return Err(NewtonError::Preconditioner {
                     iteration: k,
                     reason: e.0,

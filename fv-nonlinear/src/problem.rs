@@ -52,11 +52,16 @@ pub trait NonlinearProblem {
     fn typical_size(&self) -> f64;
 
     /// Sets up the preconditioner about the base point `x` (after its
-    /// residual was evaluated with [`Frozen::Renew`]). With `may_reuse`
-    /// the last one is still good (the previous linear solve needed few
-    /// Krylov iterations): a problem whose preconditioner is costly to
-    /// build may keep it.
-    fn prepare_preconditioner(&mut self, x: &[f64], may_reuse: bool) -> Result<(), Inadmissible>;
+    /// residual was evaluated with [`Frozen::Renew`]). `last_krylov`: the
+    /// Krylov iterations the previous Newton step's linear solve needed
+    /// with the preconditioner it left (`None`: no step before, or it
+    /// failed) — a problem whose preconditioner is costly to build may
+    /// keep it while that is small, or change it when it is large.
+    fn prepare_preconditioner(
+        &mut self,
+        x: &[f64],
+        last_krylov: Option<usize>,
+    ) -> Result<(), Inadmissible>;
 
     /// z = P⁻¹ r, P ≈ −J (the preconditioner approximates the *negative*
     /// Jacobian, as the segregated operator does: F(x + δ) ≈ F(x) − P δ).

@@ -54,7 +54,7 @@ impl NonlinearProblem for Bratu {
     fn typical_size(&self) -> f64 {
         1.0
     }
-    fn prepare_preconditioner(&mut self, _: &[f64], _: bool) -> Result<(), Inadmissible> {
+    fn prepare_preconditioner(&mut self, _: &[f64], _: Option<usize>) -> Result<(), Inadmissible> {
         self.diag.clear();
         self.diag.resize(self.n, 2.0);
         Ok(())
@@ -146,7 +146,7 @@ impl NonlinearProblem for SpringsOnObstacle {
     fn changes_at_last_renewal(&self) -> usize {
         self.changes
     }
-    fn prepare_preconditioner(&mut self, _: &[f64], _: bool) -> Result<(), Inadmissible> {
+    fn prepare_preconditioner(&mut self, _: &[f64], _: Option<usize>) -> Result<(), Inadmissible> {
         self.diag.clear();
         self.diag.extend(
             self.active

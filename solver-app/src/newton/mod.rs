@@ -153,7 +153,9 @@ impl NewtonKrylovSolver {
             params: self.params,
             work: &mut self.work,
             preconditioner: &mut self.operator,
-            jacobian: self.jacobian.as_mut(),
+            jacobian: &mut self.jacobian,
+            switch_after: None,
+            switched: None,
             times: &mut self.times,
             reference: 0.0,
             changes: 0,
@@ -165,40 +167,32 @@ impl NewtonKrylovSolver {
         }
     }
 
-    /// `"auto"`: the segregated operator needed `krylov` iterations in a
-    /// Newton step; past [`SWITCH_KRYLOV_ITERATIONS`] the assembled
-    /// Jacobian takes over for the rest of the run, if it can be
-    /// factorised ([`LU_LIMIT`]) and the problem is two-dimensional
-    /// (plane or axisymmetric). The LU of a 3-D Jacobian fills in: the
-    /// twisting hemisphere (2,457 cells) ran its first 20 increments in
-    /// 27–59 s with it, in 6.6 s with the segregated operator.
-    fn consider_switch(&mut self, bodies: &[Body], krylov: usize, increment_time: f64) {
-        if self.preconditioning != Preconditioning::Auto
-            || self.jacobian.is_some()
-            || krylov <= SWITCH_KRYLOV_ITERATIONS
-        {
-            return;
-        }
+    /// `"auto"` may switch to the assembled Jacobian when a Newton step
+    /// needs more than [`SWITCH_KRYLOV_ITERATIONS`] Krylov iterations with
+    /// the segregated operator ([`ModelProblem::prepare_preconditioner`]),
+    /// if the system can be factorised ([`LU_LIMIT`]) and the problem is
+    /// two-dimensional (plane or axisymmetric). The LU of a 3-D Jacobian
+    /// fills in: the twisting hemisphere (2,457 cells) ran its first 20
+    /// increments in 27–59 s with it, in 6.6 s with the segregated
+    /// operator.
+    fn may_switch(&self) -> bool {
         let solved = self.layout.unsolved.iter().filter(|u| !**u).count();
-        if solved > 2 || solved * self.layout.n_nodes > LU_LIMIT {
-            return;
-        }
-        self.jacobian = Some(AssembledJacobian::new(bodies, &self.layout));
-        self.notes.push(format!(
-            "t = {increment_time:.6e}: a Newton step needed {krylov} Krylov iterations with the segregated operator as preconditioner; the assembled Jacobian preconditions from here on ([solver] linear.preconditioner = \"auto\")"
-        ));
+        self.preconditioning == Preconditioning::Auto
+            && self.jacobian.is_none()
+            && solved <= 2
+            && solved * self.layout.n_nodes <= LU_LIMIT
     }
 
     /// The Newton solve of the current first iterate, its counts added to
-    /// `total`; the largest Krylov count of a step into `krylov_max`.
+    /// `total`.
     fn newton_solve(
         &mut self,
         bodies: &mut [Body],
         contacts: &mut ContactSet,
         total: &mut NewtonInfo,
-        krylov_max: &mut usize,
         on_iteration: &mut dyn FnMut(usize, f64),
     ) -> Result<NewtonInfo, NewtonError> {
+        let switch_after = self.may_switch().then_some(SWITCH_KRYLOV_ITERATIONS);
         let mut problem = ModelProblem {
             bodies,
             contacts,
@@ -206,7 +200,9 @@ impl NewtonKrylovSolver {
             params: self.params,
             work: &mut self.work,
             preconditioner: &mut self.operator,
-            jacobian: self.jacobian.as_mut(),
+            jacobian: &mut self.jacobian,
+            switch_after,
+            switched: None,
             times: &mut self.times,
             reference: 0.0,
             changes: 0,
@@ -219,7 +215,6 @@ impl NewtonKrylovSolver {
         let done = total.iterations;
         let trace = std::env::var_os("FVC_TRACE").is_some();
         let result = self.newton.solve(&mut problem, &mut self.x, &mut |r| {
-            *krylov_max = (*krylov_max).max(r.krylov_iterations);
             if trace {
                 trace_iteration(r);
             }
@@ -227,6 +222,12 @@ impl NewtonKrylovSolver {
                 on_iteration(done + r.iteration, r.residual)
             }
         });
+        if let Some(krylov) = problem.switched {
+            self.notes.push(format!(
+                "t = {:.6e}: a Newton step needed {krylov} Krylov iterations with the segregated operator as preconditioner; the assembled Jacobian preconditions from the next step on ([solver] linear.preconditioner = \"auto\")",
+                self.step_times.1
+            ));
+        }
         let counts = match &result {
             Ok(i) => *i,
             Err(NewtonError::LineSearch { info, .. })
@@ -291,12 +292,10 @@ impl crate::nonlinear_solver::NonlinearSolver for NewtonKrylovSolver {
             ..Default::default()
         };
         let mut total = NewtonInfo::default();
-        let mut krylov_max = 0;
         let mut solves = 0;
         let outcome = loop {
             solves += 1;
-            let result =
-                self.newton_solve(bodies, contacts, &mut total, &mut krylov_max, on_iteration);
+            let result = self.newton_solve(bodies, contacts, &mut total, on_iteration);
             info.outer_iterations = total.iterations;
             info.linear_iterations = total.krylov_iterations;
             info.residual_evaluations = total.residual_evaluations;
@@ -336,7 +335,6 @@ impl crate::nonlinear_solver::NonlinearSolver for NewtonKrylovSolver {
             }
             break Ok(true);
         };
-        self.consider_switch(bodies, krylov_max, self.step_times.1);
         if total.at_floor && matches!(outcome, Ok(true)) {
             self.notes.push(format!(
                 "t = {:.6e}: converged at the residual floor {:.2e} (no Newton step decreased the residual further; up to {:.0} × the tolerance is accepted there: contact faces opening and closing at the solution)",

@@ -7,6 +7,7 @@
 //! computed from x inside the call.
 use super::jacobian::AssembledJacobian;
 use super::layout::StateLayout;
+use super::preconditioning::JACOBIAN_REUSE_KRYLOV;
 use super::segregated_operator::SegregatedOperator;
 use crate::contact_coupling::ContactSet;
 use crate::model::Body;
@@ -160,7 +161,13 @@ pub struct ModelProblem<'a> {
     /// preconditioner when there is no assembled Jacobian).
     pub preconditioner: &'a mut SegregatedOperator,
     /// The assembled Jacobian, when it preconditions.
-    pub jacobian: Option<&'a mut AssembledJacobian>,
+    pub jacobian: &'a mut Option<AssembledJacobian>,
+    /// `"auto"`: a Newton step whose linear solve needed more Krylov
+    /// iterations than this makes the assembled Jacobian precondition from
+    /// the next step on (`None`: never).
+    pub switch_after: Option<usize>,
+    /// The Krylov iterations that made it switch, if it did.
+    pub switched: Option<usize>,
     /// Seconds per phase.
     pub times: &'a mut PhaseTimes,
     /// Force scale of the last renewed evaluation.
@@ -439,13 +446,26 @@ impl NonlinearProblem for ModelProblem<'_> {
         self.penetration.1 = Some(self.penetration.0);
     }
 
-    fn prepare_preconditioner(&mut self, _x: &[f64], may_reuse: bool) -> Result<(), Inadmissible> {
+    fn prepare_preconditioner(
+        &mut self,
+        _x: &[f64],
+        last_krylov: Option<usize>,
+    ) -> Result<(), Inadmissible> {
         let t = Instant::now();
-        let r = match self.jacobian.as_deref_mut() {
+        if let (None, Some(limit), Some(k)) =
+            (self.jacobian.as_ref(), self.switch_after, last_krylov)
+        {
+            if k > limit {
+                *self.jacobian = Some(AssembledJacobian::new(self.bodies, self.layout));
+                self.switched = Some(k);
+            }
+        }
+        let reuse = last_krylov.is_some_and(|k| k <= JACOBIAN_REUSE_KRYLOV);
+        let r = match self.jacobian.as_mut() {
             // the assembled Jacobian is costly to factorise: kept while it
-            // serves (an older Jacobian of the same increment still
-            // preconditions the products of the current one)
-            Some(j) if may_reuse && j.is_factorised() => Ok(()),
+            // serves (an older Jacobian still preconditions the products of
+            // the current one)
+            Some(j) if reuse && j.is_factorised() => Ok(()),
             Some(j) => j.assemble(self.bodies, self.contacts, self.layout, &self.params),
             None => self
                 .preconditioner
@@ -458,7 +478,7 @@ impl NonlinearProblem for ModelProblem<'_> {
 
     fn precondition(&mut self, r: &[f64], z: &mut [f64]) {
         let t = Instant::now();
-        let ok = match self.jacobian.as_deref_mut() {
+        let ok = match self.jacobian.as_mut() {
             Some(j) => j.apply(r, z).is_ok(),
             None => {
                 self.preconditioner.apply(r, z);

@@ -86,7 +86,7 @@ impl NewtonKrylovSolver {
         let ok = {
             let mut problem = self.problem(bodies, contacts);
             problem.residual(&zero, &mut f0, Frozen::Renew).is_ok()
-                && problem.prepare_preconditioner(&zero, false).is_ok()
+                && problem.prepare_preconditioner(&zero, None).is_ok()
         };
         for b in bodies.iter_mut() {
             b.refresh_conditions(th);

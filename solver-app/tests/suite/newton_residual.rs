@@ -193,9 +193,11 @@ fn assembled_against_products(text: &str, seed: u64, x_scale: f64) -> f64 {
     solver.begin_increment(&mut bodies);
     let n = solver.state_len();
     let layout = solver.layout().clone();
-    let mut jac = solver_app::newton::jacobian::AssembledJacobian::new(&bodies, &layout);
+    let mut jac = Some(solver_app::newton::jacobian::AssembledJacobian::new(
+        &bodies, &layout,
+    ));
     let mut p = solver.problem(&mut bodies, &mut contacts);
-    p.jacobian = Some(&mut jac);
+    p.jacobian = &mut jac;
     let mut x = seeded(n, seed, x_scale);
     let mut v = seeded(n, seed + 1, 1.0);
     for (c, &off) in layout.unsolved.iter().enumerate() {
@@ -206,7 +208,7 @@ fn assembled_against_products(text: &str, seed: u64, x_scale: f64) -> f64 {
     }
     let mut f0 = vec![0.0; n];
     p.residual(&x, &mut f0, Frozen::Renew).unwrap();
-    p.prepare_preconditioner(&x, false).unwrap();
+    p.prepare_preconditioner(&x, None).unwrap();
     let nv = v.iter().map(|a| a * a).sum::<f64>().sqrt();
     let h = 1e-7 * x_scale.max(1e-3) / nv * (n as f64).sqrt();
     let xp: Vec<f64> = x.iter().zip(&v).map(|(x, v)| x + h * v).collect();
@@ -215,7 +217,9 @@ fn assembled_against_products(text: &str, seed: u64, x_scale: f64) -> f64 {
     let fd: Vec<f64> = fp.iter().zip(&f0).map(|(a, b)| -(a - b) / h).collect();
     drop(p);
     let mut jv = vec![0.0; n];
-    jac.negative_jacobian_times(&v, &mut jv);
+    jac.as_mut()
+        .expect("assembled above")
+        .negative_jacobian_times(&v, &mut jv);
     let err = fd
         .iter()
         .zip(&jv)

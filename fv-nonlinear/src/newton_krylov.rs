@@ -53,12 +53,12 @@ pub struct NewtonParams {
     /// block at ε_n/E = 1000 crept from 1.31e-5 to 1.14e-5 over 25 Newton
     /// iterations of up to 200 Krylov iterations each); 0: never.
     pub floor_stall_iterations: usize,
-    /// A solve farther from the tolerance whose last this many accepted
-    /// steps left the residual above [`STALL_PROGRESS`] of where they
-    /// started stops with [`NewtonError::Stagnated`] (the time loop then
-    /// cuts the step back): die drawing crept at 6.8e-2 with steps of
-    /// 10⁻⁵ for 5,000 iterations, where the half step converges in 14;
-    /// 0: never.
+    /// A solve farther than [`STALL_ABORT_BAND`] × `floor_factor` × the
+    /// tolerance whose last this many accepted steps left the residual
+    /// above [`STALL_PROGRESS`] of where they started stops with
+    /// [`NewtonError::Stagnated`] (the time loop then cuts the step back):
+    /// die drawing crept at 6.8e-2 with steps of 10⁻⁵ for 5,000
+    /// iterations, where the half step converges in 14; 0: never.
     pub stall_abort_iterations: usize,
 }
 
@@ -190,6 +190,13 @@ pub struct IterationReport {
     /// The pseudo-transient shift σ of its linear solve (0: Newton).
     pub shift: f64,
 }
+
+/// Stagnation just above the floor band is left to creep on (concentric
+/// spheres after buckling and die drawing stalled at 1–9 × 10⁻⁴ for a
+/// tolerance of 10⁻⁶ and reached the floor; cut back there, the runs
+/// failed): [`NewtonParams::stall_abort_iterations`] applies beyond this
+/// factor of the floor band.
+pub const STALL_ABORT_BAND: f64 = 10.0;
 
 /// Square root of the machine epsilon, the relative size of the
 /// finite-difference step.
@@ -501,7 +508,7 @@ impl NewtonKrylov {
             }
             if params.stall_abort_iterations > 0
                 && stall_steps >= params.stall_abort_iterations
-                && fnorm > params.floor_factor * target
+                && fnorm > STALL_ABORT_BAND * params.floor_factor * target
             {
                 return Err(NewtonError::Stagnated {
                     iteration: k,

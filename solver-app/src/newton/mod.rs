@@ -26,7 +26,7 @@ use fv_discretise::MomentumParams;
 use fv_nonlinear::{
     GmresParams, IterationReport, NewtonError, NewtonInfo, NewtonKrylov, NewtonParams,
 };
-use jacobian::{AssembledJacobian, LU_LIMIT};
+use jacobian::{AssembledJacobian, LU_LIMIT, LU_LIMIT_3D};
 use layout::StateLayout;
 use preconditioning::{Preconditioning, SWITCH_KRYLOV_ITERATIONS};
 use residual::{mean_cell_size, stiffness_area, ModelProblem, ResidualWork};
@@ -170,17 +170,18 @@ impl NewtonKrylovSolver {
     /// `"auto"` may switch to the assembled Jacobian when a Newton step
     /// needs more than [`SWITCH_KRYLOV_ITERATIONS`] Krylov iterations with
     /// the segregated operator ([`ModelProblem::prepare_preconditioner`]),
-    /// if the system can be factorised ([`LU_LIMIT`]) and the problem is
-    /// two-dimensional (plane or axisymmetric). The LU of a 3-D Jacobian
-    /// fills in: the twisting hemisphere (2,457 cells) ran its first 20
-    /// increments in 27–59 s with it, in 6.6 s with the segregated
-    /// operator.
+    /// if the system can be factorised: up to [`LU_LIMIT`] unknowns in
+    /// two dimensions (plane or axisymmetric), [`LU_LIMIT_3D`] in three,
+    /// where the LU fills in: the twisting hemisphere (2,457 cells, 9,000
+    /// unknowns) ran its first 20 increments in 27–59 s with it, in 6.6 s
+    /// with the segregated operator, while the concentric spheres (734
+    /// cells) need it after the shell buckles.
     fn may_switch(&self) -> bool {
         let solved = self.layout.unsolved.iter().filter(|u| !**u).count();
+        let limit = if solved <= 2 { LU_LIMIT } else { LU_LIMIT_3D };
         self.preconditioning == Preconditioning::Auto
             && self.jacobian.is_none()
-            && solved <= 2
-            && solved * self.layout.n_nodes <= LU_LIMIT
+            && solved * self.layout.n_nodes <= limit
     }
 
     /// The Newton solve of the current first iterate, its counts added to

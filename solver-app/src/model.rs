@@ -1014,7 +1014,7 @@ fn check_plane_stress_thickness(
         }
         for f in patch.faces() {
             empty_faces += 1;
-            if geom.face_normals[f].z.abs() < 0.999 {
+            if geom.face_normal(f).z.abs() < 0.999 {
                 return Err(case.source.error(
                     &format!("body[{bi}].material"),
                     format!(

@@ -326,8 +326,8 @@ pub(crate) fn unsolved_directions(bodies: &[Body]) -> [bool; 3] {
                 let threshold = 1.0 - 1e-6;
                 // a wedge face's rotation takes the mid-plane's normal onto its own
                 let n = match rotations {
-                    Some(r) => r[i].transpose() * b.geom.face_normals[f],
-                    None => b.geom.face_normals[f],
+                    Some(r) => r[i].transpose() * b.geom.face_normal(f),
+                    None => b.geom.face_normal(f),
                 };
                 for d in 0..3 {
                     if n[d].abs() < threshold {

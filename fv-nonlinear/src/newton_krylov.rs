@@ -259,6 +259,12 @@ impl NewtonKrylov {
         self.gmres.memory_bytes() + 8 * 4 * self.f.len()
     }
 
+    /// Returns the Krylov basis's pages to the system between solves
+    /// ([`Gmres::release_pages`]).
+    pub fn release_krylov_pages(&mut self) {
+        self.gmres.release_pages();
+    }
+
     /// The residual F at the last accepted iterate of the last solve.
     pub fn residual(&self) -> &[f64] {
         &self.f

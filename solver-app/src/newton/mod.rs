@@ -224,6 +224,7 @@ impl NewtonKrylovSolver {
                 on_iteration(done + r.iteration, r.residual)
             }
         });
+        self.newton.release_krylov_pages();
         let counts = match &result {
             Ok(i) => *i,
             Err(NewtonError::LineSearch { info, .. })

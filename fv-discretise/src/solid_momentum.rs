@@ -220,10 +220,11 @@ pub struct SolidMomentum {
     /// indentation) and depended on the number of increments; die drawing
     /// stalled at 0.1825 m and now runs to the end.
     face_state: Option<MaterialState>,
-    /// u, u_b, n·∇u and (small strain) the cell gradient at the start of
-    /// the current attempt of an increment (to redo it with a smaller step,
-    /// [`Self::restore_start`]).
-    saved: (Vec<Vector>, Vec<Vector>, Vec<Vector>, Vec<Tensor>),
+    /// u, u_b and n·∇u at the start of the current attempt of an increment
+    /// (to redo it with a smaller step, [`Self::restore_start`]; the small
+    /// strain cell gradient is recomputed from them there rather than kept,
+    /// 72 B per cell).
+    saved: (Vec<Vector>, Vec<Vector>, Vec<Vector>),
     /// Cell gradient of the displacement on the current mesh: of u under
     /// small strain, of the increment Δu under the updated Lagrangian form.
     pub grad_u: Vec<Tensor>,
@@ -340,7 +341,6 @@ impl SolidMomentum {
                 vec![Vector::zeros(); nc],
                 vec![Vector::zeros(); nb],
                 vec![Vector::zeros(); nb],
-                vec![Tensor::zeros(); nc],
             ),
             grad_u: vec![Tensor::zeros(); nc],
             sigma: vec![Tensor::zeros(); nc],
@@ -602,12 +602,11 @@ impl SolidMomentum {
         self.saved.0.copy_from_slice(&self.u);
         self.saved.1.copy_from_slice(&self.u_b);
         self.saved.2.copy_from_slice(&self.snd_b);
-        self.saved.3.copy_from_slice(&self.grad_u);
     }
 
     /// Back to the fields of [`Self::save_start`], the trial material state
     /// dropped: the increment is redone (with a smaller step).
-    pub fn restore_start(&mut self) {
+    pub fn restore_start(&mut self, mesh: &PolyMesh) {
         self.u.copy_from_slice(&self.saved.0);
         self.u_b.copy_from_slice(&self.saved.1);
         self.snd_b.copy_from_slice(&self.saved.2);
@@ -635,8 +634,10 @@ impl SolidMomentum {
         } else {
             // small strain: the next boundary update extrapolates with the
             // last gradient, which a diverged attempt may have left huge or
-            // non-finite (the retry then diverged in its first iteration)
-            self.grad_u.copy_from_slice(&self.saved.3);
+            // non-finite (the retry then diverged in its first iteration):
+            // the gradient of the restored fields
+            self.gradient
+                .vector_gradient(mesh, &self.u, &self.u_b, &mut self.grad_u);
         }
         if self.law.is_updated_lagrangian() {
             for ((d, u), o) in self.du.iter_mut().zip(&self.u).zip(&self.u_old) {

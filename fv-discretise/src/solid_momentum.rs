@@ -1136,7 +1136,8 @@ impl SolidMomentum {
             let mut force = sig_f * geom.face_areas[f];
             if alpha != 0.0 {
                 let grad_f = self.grad_u[o] * w + self.grad_u[nb] * (1.0 - w);
-                let d = geom.delta(mesh, f);
+                // the d-vector of the internal face, C_N − C_P
+                let d = geom.cell_centres[nb] - geom.cell_centres[o];
                 let jump = u_inc[nb] - u_inc[o] - grad_f.transpose() * d;
                 let rc = jump * (alpha * self.k * geom.face_mag[f] / self.dn[f]);
                 force += rc;

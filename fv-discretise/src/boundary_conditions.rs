@@ -165,7 +165,7 @@ pub fn wedge_rotations(
     let normals: Vec<Vector> = patches
         .iter()
         .flat_map(|&p| mesh.patches[p].faces())
-        .map(|f| geom.face_normals[f])
+        .map(|f| geom.face_normal(f))
         .collect();
     let Some(&na) = normals.first() else {
         return Ok(patches.iter().map(|_| Vec::new()).collect());
@@ -198,7 +198,7 @@ pub fn wedge_rotations(
     for &p in patches {
         let mut rots = Vec::with_capacity(mesh.patches[p].size);
         for f in mesh.patches[p].faces() {
-            let n = geom.face_normals[f];
+            let n = geom.face_normal(f);
             let s = if n.dot(&mid) >= 0.0 { 1.0 } else { -1.0 };
             let from = mid * s;
             let r = nalgebra::Rotation3::rotation_between(&from, &n)
@@ -249,8 +249,8 @@ fn check_wedge_shape(
     };
     let on_plane_a = |n: &Vector| n.dot(&na) >= n.dot(&nb);
     let (Some((_, fa, _)), Some((_, fb, _))) = (
-        faces().find(|(_, f, _)| on_plane_a(&geom.face_normals[*f])),
-        faces().find(|(_, f, _)| !on_plane_a(&geom.face_normals[*f])),
+        faces().find(|(_, f, _)| on_plane_a(&geom.face_normal(*f))),
+        faces().find(|(_, f, _)| !on_plane_a(&geom.face_normal(*f))),
     ) else {
         return Ok(());
     };
@@ -259,7 +259,7 @@ fn check_wedge_shape(
     let mut on_a: Vec<Option<(usize, Tensor)>> = vec![None; mesh.n_cells];
     let mut on_b: Vec<Option<(usize, Tensor)>> = vec![None; mesh.n_cells];
     for (p, f, r) in faces() {
-        let n = geom.face_normals[f];
+        let n = geom.face_normal(f);
         let a = on_plane_a(&n);
         let (plane_n, plane_x) = if a { (na, xa) } else { (nb, xb) };
         let size = geom.face_mag[f].sqrt();

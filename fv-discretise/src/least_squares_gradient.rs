@@ -38,7 +38,7 @@ impl LeastSquaresGradient {
         let nf = mesh.n_faces();
         let mut g = vec![Tensor::zeros(); nc];
         for f in 0..nf {
-            let d = geom.delta[f];
+            let d = geom.delta(mesh, f);
             let w = ls_weight(&d);
             let dd = d * d.transpose() * w;
             g[mesh.owner[f] as usize] += dd;
@@ -50,7 +50,7 @@ impl LeastSquaresGradient {
         self.owner_coeff.resize(nf, Vector::zeros());
         self.neighbour_coeff.resize(ni, Vector::zeros());
         for f in 0..ni {
-            let d = geom.delta[f];
+            let d = geom.delta(mesh, f);
             let w = ls_weight(&d);
             self.owner_coeff[f] = ginv[mesh.owner[f] as usize] * d * w;
             self.neighbour_coeff[f] = -(ginv[mesh.neighbour[f] as usize] * d * w);
@@ -58,7 +58,7 @@ impl LeastSquaresGradient {
         for (pi, p) in mesh.patches.iter().enumerate() {
             let passive = passive_patch.get(pi).copied().unwrap_or(false);
             for f in p.faces() {
-                let d = geom.delta[f];
+                let d = geom.delta(mesh, f);
                 let w = ls_weight(&d);
                 self.owner_coeff[f] = if passive {
                     Vector::zeros()

@@ -220,10 +220,11 @@ pub struct SolidMomentum {
     /// indentation) and depended on the number of increments; die drawing
     /// stalled at 0.1825 m and now runs to the end.
     face_state: Option<MaterialState>,
-    /// u, u_b, n·∇u and (small strain) the cell gradient at the start of
-    /// the current attempt of an increment (to redo it with a smaller step,
-    /// [`Self::restore_start`]).
-    saved: (Vec<Vector>, Vec<Vector>, Vec<Vector>, Vec<Tensor>),
+    /// u, u_b and n·∇u at the start of the current attempt of an increment
+    /// (to redo it with a smaller step, [`Self::restore_start`]; the small
+    /// strain cell gradient is recomputed from them there rather than kept,
+    /// 72 B per cell).
+    saved: (Vec<Vector>, Vec<Vector>, Vec<Vector>),
     /// Cell gradient of the displacement on the current mesh: of u under
     /// small strain, of the increment Δu under the updated Lagrangian form.
     pub grad_u: Vec<Tensor>,
@@ -340,7 +341,6 @@ impl SolidMomentum {
                 vec![Vector::zeros(); nc],
                 vec![Vector::zeros(); nb],
                 vec![Vector::zeros(); nb],
-                vec![Tensor::zeros(); nc],
             ),
             grad_u: vec![Tensor::zeros(); nc],
             sigma: vec![Tensor::zeros(); nc],
@@ -363,8 +363,8 @@ impl SolidMomentum {
     pub fn update_geometry(&mut self, mesh: &PolyMesh, geom: &MeshGeometry) {
         let ni = mesh.n_internal_faces();
         for f in 0..mesh.n_faces() {
-            let n = geom.face_normals[f];
-            let d = geom.delta[f];
+            let n = geom.face_normal(f);
+            let d = geom.delta(mesh, f);
             // guard against faces whose d is (nearly) tangential
             let dn = d.dot(&n).max(0.05 * d.norm());
             self.dn[f] = dn;
@@ -419,7 +419,7 @@ impl SolidMomentum {
         }
         let step = q - Tensor::identity();
         for (i, g) in self.snd_b.iter_mut().enumerate() {
-            *g = step * geom.face_normals[ni + i];
+            *g = step * geom.face_normal(ni + i);
         }
         self.grad_u.iter_mut().for_each(|g| *g = step.transpose());
         for (d, (u, o)) in self.du.iter_mut().zip(self.u.iter().zip(&self.u_old)) {
@@ -501,7 +501,7 @@ impl SolidMomentum {
                 continue;
             }
             for f in p.faces() {
-                let n = geom.face_normals[f];
+                let n = geom.face_normal(f);
                 let area_ratio = match &self.conditions[pi] {
                     PatchCondition::LinearisedContact(lc) => lc.moved_area_ratio(f - p.start),
                     _ => self.measured_moved_area(f - ni).map(|a| a.norm()),
@@ -602,12 +602,11 @@ impl SolidMomentum {
         self.saved.0.copy_from_slice(&self.u);
         self.saved.1.copy_from_slice(&self.u_b);
         self.saved.2.copy_from_slice(&self.snd_b);
-        self.saved.3.copy_from_slice(&self.grad_u);
     }
 
     /// Back to the fields of [`Self::save_start`], the trial material state
     /// dropped: the increment is redone (with a smaller step).
-    pub fn restore_start(&mut self) {
+    pub fn restore_start(&mut self, mesh: &PolyMesh) {
         self.u.copy_from_slice(&self.saved.0);
         self.u_b.copy_from_slice(&self.saved.1);
         self.snd_b.copy_from_slice(&self.saved.2);
@@ -635,8 +634,10 @@ impl SolidMomentum {
         } else {
             // small strain: the next boundary update extrapolates with the
             // last gradient, which a diverged attempt may have left huge or
-            // non-finite (the retry then diverged in its first iteration)
-            self.grad_u.copy_from_slice(&self.saved.3);
+            // non-finite (the retry then diverged in its first iteration):
+            // the gradient of the restored fields
+            self.gradient
+                .vector_gradient(mesh, &self.u, &self.u_b, &mut self.grad_u);
         }
         if self.law.is_updated_lagrangian() {
             for ((d, u), o) in self.du.iter_mut().zip(&self.u).zip(&self.u_old) {
@@ -677,7 +678,7 @@ impl SolidMomentum {
             for f in p.faces() {
                 let a = self.face_coefficient(geom, f);
                 let o = mesh.owner[f] as usize;
-                let n = geom.face_normals[f];
+                let n = geom.face_normal(f);
                 diag[o] += match cond {
                     PatchCondition::Displacement(_) => a,
                     PatchCondition::Symmetry | PatchCondition::NormalDisplacement(_) => {
@@ -720,7 +721,7 @@ impl SolidMomentum {
                 let step = match cond {
                     PatchCondition::Displacement(v) => v[f - p.start] - self.u_b[f - ni],
                     PatchCondition::NormalDisplacement(v) => {
-                        let n = geom.face_normals[f];
+                        let n = geom.face_normal(f);
                         n * (v[f - p.start] - n.dot(&self.u_b[f - ni]))
                     }
                     _ => continue,
@@ -760,7 +761,7 @@ impl SolidMomentum {
                 continue;
             }
             for f in p.faces() {
-                let n = geom.face_normals[f];
+                let n = geom.face_normal(f);
                 if n.iter().filter(|x| x.abs() > 1e-12).count() < 2 {
                     continue;
                 }
@@ -810,7 +811,7 @@ impl SolidMomentum {
             for f in p.faces() {
                 let b = f - ni;
                 let o = mesh.owner[f] as usize;
-                let n = geom.face_normals[f];
+                let n = geom.face_normal(f);
                 let gp = self.grad_u[o];
                 let base = self.u_b_old.get(b).copied().unwrap_or_else(Vector::zeros);
                 // total displacement extrapolated from the owner along k_b
@@ -852,8 +853,8 @@ impl SolidMomentum {
                         // cell's plane, then rotated onto the face plane: exact
                         // for linear fields, also for the prisms on the axis
                         let r = r[f - p.start];
-                        let back =
-                            r.transpose() * self.kb[b] + wedge_back_shift(&r, &n, geom.delta[f]);
+                        let back = r.transpose() * self.kb[b]
+                            + wedge_back_shift(&r, &n, geom.delta(mesh, f));
                         // (of the increment under the updated Lagrangian form)
                         base + r * ((self.u[o] - self.old(o)) + gp.transpose() * back)
                     }
@@ -1016,7 +1017,7 @@ impl SolidMomentum {
                 for f in p.faces() {
                     let b = f - ni;
                     let o = mesh.owner[f] as usize;
-                    let g = self.boundary_gradient(f, b, o, &geom.face_normals[f]);
+                    let g = self.boundary_gradient(f, b, o, &geom.face_normal(f));
                     if let Some((_, trial)) = law.update_point(&fs.committed(b), &g) {
                         fs.set_trial(b, &trial);
                     }
@@ -1135,7 +1136,8 @@ impl SolidMomentum {
             let mut force = sig_f * geom.face_areas[f];
             if alpha != 0.0 {
                 let grad_f = self.grad_u[o] * w + self.grad_u[nb] * (1.0 - w);
-                let d = geom.delta[f];
+                // the d-vector of the internal face, C_N − C_P
+                let d = geom.cell_centres[nb] - geom.cell_centres[o];
                 let jump = u_inc[nb] - u_inc[o] - grad_f.transpose() * d;
                 let rc = jump * (alpha * self.k * geom.face_mag[f] / self.dn[f]);
                 force += rc;
@@ -1161,7 +1163,7 @@ impl SolidMomentum {
             for f in p.faces() {
                 let b = f - ni;
                 let o = mesh.owner[f] as usize;
-                let n = geom.face_normals[f];
+                let n = geom.face_normal(f);
                 let area = geom.face_areas[f];
                 let current_mag = || {
                     if ul {
@@ -1243,7 +1245,7 @@ impl SolidMomentum {
             .faces()
             .map(|f| {
                 let o = mesh.owner[f] as usize;
-                let n = geom.face_normals[f];
+                let n = geom.face_normal(f);
                 let g = self.boundary_gradient(f, f - ni, o, &n);
                 self.law
                     .point_stress(o, &g)

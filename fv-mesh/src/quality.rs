@@ -28,8 +28,8 @@ impl MeshQuality {
         };
         let mut sum = 0.0;
         for f in 0..ni {
-            let d = g.delta[f];
-            let n = g.face_normals[f];
+            let d = g.delta(mesh, f);
+            let n = g.face_normal(f);
             let dn = d.dot(&n);
             let cosang = (dn / d.norm()).clamp(-1.0, 1.0);
             let ang = cosang.acos().to_degrees();

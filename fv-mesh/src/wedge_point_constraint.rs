@@ -69,7 +69,7 @@ impl WedgePointConstraint {
         let mut points = vec![PointConstraint::Free; mesh.n_points()];
         for &p in wedge_patches {
             for f in mesh.patches[p].faces() {
-                let n = geom.face_normals[f];
+                let n = geom.face_normal(f);
                 for &pt in mesh.face(f) {
                     let c = &mut points[pt as usize];
                     *c = match *c {
@@ -134,12 +134,12 @@ pub fn is_planar_patch(mesh: &PolyMesh, geom: &MeshGeometry, p: usize) -> bool {
     let Some(first) = patch.faces().next() else {
         return false;
     };
-    let (c0, n0) = (geom.face_centres[first], geom.face_normals[first]);
+    let (c0, n0) = (geom.face_centres[first], geom.face_normal(first));
     let extent = patch
         .faces()
         .fold(0.0f64, |e, f| e.max((geom.face_centres[f] - c0).norm()));
     patch.faces().all(|f| {
-        geom.face_normals[f].dot(&n0) >= SAME_PLANE_COSINE
+        geom.face_normal(f).dot(&n0) >= SAME_PLANE_COSINE
             && (geom.face_centres[f] - c0).dot(&n0).abs() <= PLANE_OFFSET * extent
     })
 }

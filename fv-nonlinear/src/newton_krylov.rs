@@ -210,12 +210,13 @@ pub struct NewtonKrylov {
     gmres: Gmres,
     f: Vec<f64>,
     dx: Vec<f64>,
+    /// The line search's trial point, also the Jacobian products' probe
+    /// point (never live at the same time).
     x_trial: Vec<f64>,
+    /// The residual there (the probe's, and the damping's in a rescue).
     f_trial: Vec<f64>,
-    x_probe: Vec<f64>,
     /// Krylov iterations of the last step of the last solve.
     last_krylov: Option<usize>,
-    f_probe: Vec<f64>,
 }
 
 /// −J of the problem at a base point, by finite differences, and its
@@ -274,15 +275,19 @@ impl NewtonKrylov {
             dx: vec![0.0; n],
             x_trial: vec![0.0; n],
             f_trial: vec![0.0; n],
-            x_probe: vec![0.0; n],
-            f_probe: vec![0.0; n],
             last_krylov: None,
         }
     }
 
-    /// Bytes of the workspace (Krylov basis and the six work vectors).
+    /// Bytes of the workspace (Krylov basis and the four work vectors).
     pub fn memory_bytes(&self) -> usize {
-        self.gmres.memory_bytes() + 8 * 6 * self.f.len()
+        self.gmres.memory_bytes() + 8 * 4 * self.f.len()
+    }
+
+    /// Returns the Krylov basis's pages to the system between solves
+    /// ([`Gmres::release_pages`]).
+    pub fn release_krylov_pages(&mut self) {
+        self.gmres.release_pages();
     }
 
     /// The residual F at the last accepted iterate of the last solve.
@@ -354,8 +359,8 @@ impl NewtonKrylov {
                 problem: &mut *problem,
                 x: &*x,
                 fx: &self.f,
-                x_probe: &mut self.x_probe,
-                f_probe: &mut self.f_probe,
+                x_probe: &mut self.x_trial,
+                f_probe: &mut self.f_trial,
                 size,
                 shift: continuation.map_or(0.0, |c| c.sigma()),
                 evaluations: 0,
@@ -463,7 +468,7 @@ impl NewtonKrylov {
                     return Ok(info);
                 }
                 if let Some(c) = continuation.as_mut() {
-                    if problem.damping(&self.dx, &mut self.f_probe) && c.rescue() {
+                    if problem.damping(&self.dx, &mut self.f_trial) && c.rescue() {
                         info.rescues += 1;
                         last_krylov = None;
                         continue;

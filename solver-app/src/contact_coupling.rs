@@ -324,12 +324,12 @@ fn symmetry_planes(body: &Body) -> Vec<SymmetryPlane> {
         if !matches!(cond, PatchCondition::Symmetry | PatchCondition::Wedge(_)) {
             continue;
         }
-        let (c0, n0) = (g.face_centres[first], g.face_normals[first]);
+        let (c0, n0) = (g.face_centres[first], g.face_normal(first));
         let extent = p
             .faces()
             .fold(0.0f64, |e, f| e.max((g.face_centres[f] - c0).norm()));
         let planar = p.faces().all(|f| {
-            g.face_normals[f].dot(&n0) > 1.0 - 1e-9
+            g.face_normal(f).dot(&n0) > 1.0 - 1e-9
                 && (g.face_centres[f] - c0).dot(&n0).abs() <= 1e-9 * extent.max(1.0)
         });
         if planar {

@@ -193,9 +193,9 @@ fn inside_cell(
     faces.iter().all(|&f| {
         let f = f as usize;
         let out = if mesh.owner[f] as usize == c {
-            geom.face_normals[f]
+            geom.face_normal(f)
         } else {
-            -geom.face_normals[f]
+            -geom.face_normal(f)
         };
         let d = (x - geom.face_centres[f]).dot(&out);
         if f >= ni {

@@ -367,7 +367,7 @@ impl Body {
         if self.rigid {
             return;
         }
-        self.momentum.restore_start();
+        self.momentum.restore_start(&self.mesh);
         self.force_controls.clone_from(&self.force_controls_saved);
         self.momentum.conditions.clone_from(&self.conditions_saved);
     }
@@ -1014,7 +1014,7 @@ fn check_plane_stress_thickness(
         }
         for f in patch.faces() {
             empty_faces += 1;
-            if geom.face_normals[f].z.abs() < 0.999 {
+            if geom.face_normal(f).z.abs() < 0.999 {
                 return Err(case.source.error(
                     &format!("body[{bi}].material"),
                     format!(

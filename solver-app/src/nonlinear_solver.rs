@@ -84,6 +84,10 @@ impl NonlinearSolver for SegregatedSolver {
         NonlinearMethod::Segregated
     }
 
+    fn take_notes(&mut self) -> Vec<String> {
+        SegregatedSolver::take_notes(self)
+    }
+
     fn prepare(&mut self, bodies: &[Body]) -> Result<(), SolveError> {
         let linear = self.linear_settings();
         self.assemble_and_factorise(bodies, &linear)

@@ -270,7 +270,7 @@ pub fn wedge_of(bodies: &[Body]) -> Option<(Vector, f64)> {
     for b in bodies.iter().filter(|b| !b.rigid) {
         for (p, c) in b.mesh.patches.iter().zip(&b.momentum.conditions) {
             if matches!(c, fv_discretise::PatchCondition::Wedge(_)) {
-                normals.extend(p.faces().map(|f| b.geom.face_normals[f]));
+                normals.extend(p.faces().map(|f| b.geom.face_normal(f)));
             }
         }
     }

@@ -84,6 +84,34 @@ const AUGMENTATION_RESIDUAL: f64 = 100.0;
 /// cycles or diverged attempts ([`SegregatedSolver::set_divergence_retries`]).
 const MIN_RELAXATION_FRACTION: f64 = 1.0 / 16.0;
 
+/// Meshes of at least this many cells hold Anderson's history to
+/// [`ANDERSON_HISTORY_BYTES_PER_CELL`] unless the case gives
+/// `acceleration_depth` ([`budgeted_depth`]).
+const ANDERSON_BUDGET_CELLS: usize = 100_000;
+
+/// Bytes per cell of Anderson's history on a large mesh: 2 m + 2 columns
+/// of the mixed state (cells, boundary values, normal derivatives and the
+/// cell gradient, ~105 B per cell of a box), so depth 6 rather than 10 on
+/// a box. Measured, segregated, 1 step (outer iterations, peak RSS, wall):
+/// box64 (262,144 cells) depth 10: 24, 980 MB, 15.6 s; 6: 24, 775 MB,
+/// 13.3 s; 4: 27, 672 MB, 16.6 s. Smaller cases (not capped) at depth
+/// 10 / 6 / 4: axisymmetric bar 70 / 74 / 84 outer iterations; with
+/// `acceleration = "anderson"` hertz-cylinder fine 56 / 53 / 56,
+/// concentric cylinders 34 / 39 / 46, flat punch 89 / 64 / 66.
+const ANDERSON_HISTORY_BYTES_PER_CELL: usize = 1536;
+
+/// Anderson's depth for `cells` cells whose mixed state has `n_mixed`
+/// vectors: `depth` on small meshes, else the deepest history of 2 m + 2
+/// columns within [`ANDERSON_HISTORY_BYTES_PER_CELL`] (at least 1).
+fn budgeted_depth(depth: usize, n_mixed: usize, cells: usize) -> usize {
+    if cells < ANDERSON_BUDGET_CELLS || n_mixed == 0 {
+        return depth;
+    }
+    let column = n_mixed * std::mem::size_of::<Vector>();
+    let columns = ANDERSON_HISTORY_BYTES_PER_CELL * cells / column;
+    depth.min((columns.saturating_sub(2) / 2).max(1))
+}
+
 /// Components with matrices of their own are solved side by side from this
 /// many unknowns (below, handing them to the thread pool costs more than it
 /// saves).
@@ -179,6 +207,8 @@ pub enum SolveError {
 /// The global linear system and the workspaces of the outer loop; built
 /// once, refilled when the geometry or the material stiffness changes.
 pub struct SegregatedSolver {
+    /// What the solver chose that the log should say (taken by the run).
+    notes: Vec<String>,
     /// One matrix per distinct component diagonal (usually one).
     matrices: Vec<CsrMatrix>,
     /// Matrix (index into `matrices`) of each component; `None` = not solved
@@ -326,8 +356,8 @@ pub(crate) fn unsolved_directions(bodies: &[Body]) -> [bool; 3] {
                 let threshold = 1.0 - 1e-6;
                 // a wedge face's rotation takes the mid-plane's normal onto its own
                 let n = match rotations {
-                    Some(r) => r[i].transpose() * b.geom.face_normals[f],
-                    None => b.geom.face_normals[f],
+                    Some(r) => r[i].transpose() * b.geom.face_normal(f),
+                    None => b.geom.face_normal(f),
                 };
                 for d in 0..3 {
                     if n[d].abs() < threshold {
@@ -371,6 +401,19 @@ impl SegregatedSolver {
             .filter(|b| !b.rigid)
             .map(mixed_state_len)
             .sum::<usize>();
+        let mut notes = Vec::new();
+        let depth = if settings.acceleration_depth_given {
+            settings.acceleration_depth
+        } else {
+            budgeted_depth(settings.acceleration_depth, n_mixed, n)
+        };
+        if settings.acceleration == Acceleration::Anderson && depth < settings.acceleration_depth {
+            notes.push(format!(
+                "Anderson acceleration depth {depth} instead of {} on {n} cells: its history held to {} kB per cell (set [solver] acceleration_depth to choose)",
+                settings.acceleration_depth,
+                ANDERSON_HISTORY_BYTES_PER_CELL as f64 / 1024.0
+            ));
+        }
         SegregatedSolver {
             matrices: vec![matrix],
             component_matrix: [Some(0), Some(0), Some(0)],
@@ -407,10 +450,7 @@ impl SegregatedSolver {
             accelerate: true,
             anderson: match settings.acceleration {
                 Acceleration::None => None,
-                Acceleration::Anderson => Some(AndersonAcceleration::new(
-                    n_mixed,
-                    settings.acceleration_depth,
-                )),
+                Acceleration::Anderson => Some(AndersonAcceleration::new(n_mixed, depth)),
             },
             step_times: (0.0, 0.0),
             predictor: match settings.predictor {
@@ -422,6 +462,7 @@ impl SegregatedSolver {
             coupled_rhs: Default::default(),
             coupled_x: Default::default(),
             contact_change: 0.0,
+            notes,
         }
     }
 
@@ -1231,6 +1272,11 @@ impl SegregatedSolver {
         Ok(self.body_updates.iter_mut().find_map(|u| u.inverted.take()))
     }
 
+    /// What the solver chose since the last call that the log should say.
+    pub fn take_notes(&mut self) -> Vec<String> {
+        std::mem::take(&mut self.notes)
+    }
+
     /// Whether the current attempt mixes its iterates (Anderson).
     fn accelerating(&self) -> bool {
         self.anderson.is_some() && self.accelerate
@@ -1469,5 +1515,17 @@ mod tests {
             msg.contains("contact tractions still changed by more than 1e-4"),
             "{msg}"
         );
+    }
+
+    #[test]
+    fn anderson_depth_is_held_to_the_budget_on_large_meshes_only() {
+        use super::budgeted_depth;
+        // a box's mixed state: ~4.4 vectors per cell
+        let mixed = |cells: usize| cells * 44 / 10;
+        assert_eq!(budgeted_depth(10, mixed(32_768), 32_768), 10);
+        assert_eq!(budgeted_depth(10, mixed(262_144), 262_144), 6);
+        assert_eq!(budgeted_depth(4, mixed(262_144), 262_144), 4);
+        // a huge mixed state per cell still keeps one column pair
+        assert_eq!(budgeted_depth(10, 100 * 262_144, 262_144), 1);
     }
 }

@@ -235,7 +235,7 @@ impl SolidMomentum {
             let l = times_vector(&geom.face_areas[f]);
             let s = alpha * self.k * geom.face_mag[f] / self.dn[f];
             // ∂force/∂G_f from the Rhie–Chow term and the carried forces
-            let mut qf = transpose_times(&geom.delta[f]) * (-s);
+            let mut qf = transpose_times(&(geom.cell_centres[n] - geom.cell_centres[o])) * (-s);
             if carry {
                 if let Some(c) = self.rc_carried.get(f) {
                     qf += transpose_times(c);
@@ -268,7 +268,7 @@ impl SolidMomentum {
                 let b = f - ni;
                 let o = mesh.owner[f] as usize;
                 let row = StateNode::Cell(o as u32);
-                let n = geom.face_normals[f];
+                let n = geom.face_normal(f);
                 let area = geom.face_areas[f];
                 let dn = self.dn[f];
                 let gb = {

@@ -82,7 +82,7 @@ impl SolidMomentum {
         for (p, cond) in mesh.patches.iter().zip(&self.conditions) {
             for f in p.faces() {
                 let b = f - ni;
-                let n = geom.face_normals[f];
+                let n = geom.face_normal(f);
                 let base = self.u_b_old.get(b).copied().unwrap_or_else(Vector::zeros);
                 let plane = Tensor::identity() - n * n.transpose();
                 let (m, w, c) = match cond {
@@ -96,8 +96,8 @@ impl SolidMomentum {
                     }
                     PatchCondition::Wedge(r) => {
                         let r = r[f - p.start];
-                        let back =
-                            r.transpose() * self.kb[b] + wedge_back_shift(&r, &n, geom.delta[f]);
+                        let back = r.transpose() * self.kb[b]
+                            + wedge_back_shift(&r, &n, geom.delta(mesh, f));
                         (r, back, Vector::zeros())
                     }
                     _ => continue,

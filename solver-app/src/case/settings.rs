@@ -263,8 +263,12 @@ pub struct SolverSettings {
     /// Outer-iteration acceleration (default anderson for a case without
     /// contact, none with contact: [`SolverSettings::for_analysis`]).
     pub acceleration: Acceleration,
-    /// Iterates mixed by Anderson acceleration (1–20, default 10).
+    /// Iterates mixed by Anderson acceleration (1–20, default 10; held
+    /// to a memory budget on large meshes unless given:
+    /// `segregated::budgeted_depth`).
     pub acceleration_depth: usize,
+    /// Whether the case gives `acceleration_depth`.
+    pub acceleration_depth_given: bool,
     /// First iterate of each increment (default linear under large strain,
     /// none otherwise).
     pub predictor: Predictor,
@@ -286,6 +290,7 @@ impl Default for SolverSettings {
             rhie_chow_history: RhieChowHistory::Incremental,
             acceleration: Acceleration::None,
             acceleration_depth: 10,
+            acceleration_depth_given: false,
             predictor: Predictor::None,
             coupling_fallback: CouplingFallback::Implicit,
         }
@@ -573,6 +578,7 @@ pub(crate) fn solver(
             )
         })?,
         acceleration,
+        acceleration_depth_given: t.has("acceleration_depth"),
         acceleration_depth: t.opt("acceleration_depth", d.acceleration_depth, |n| {
             let m = n.usize_min(1)?;
             if m > crate::anderson::MAX_DEPTH {

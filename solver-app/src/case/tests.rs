@@ -167,6 +167,7 @@ every = 5
             rhie_chow_history: fv_discretise::RhieChowHistory::Accumulated,
             acceleration: Acceleration::Anderson,
             acceleration_depth: 8,
+            acceleration_depth_given: true,
             predictor: Predictor::Linear,
             coupling_fallback: CouplingFallback::Implicit,
         }

@@ -223,6 +223,7 @@ impl NewtonKrylovSolver {
                 on_iteration(done + r.iteration, r.residual)
             }
         });
+        self.newton.release_krylov_pages();
         if let Some(krylov) = problem.switched {
             self.notes.push(format!(
                 "t = {:.6e}: a Newton step needed {krylov} Krylov iterations with the segregated operator as preconditioner; the assembled Jacobian preconditions from the next step on ([solver] linear.preconditioner = \"auto\")",

@@ -127,7 +127,7 @@ impl ResidualWork {
             let k = b.momentum.k;
             let ni = b.mesh.n_internal_faces();
             for f in 0..ni {
-                let a = k * b.geom.face_mag[f] / b.geom.delta[f].norm();
+                let a = k * b.geom.face_mag[f] / b.geom.delta(&b.mesh, f).norm();
                 self.damping[b.offset + b.mesh.owner[f] as usize] += a;
                 self.damping[b.offset + b.mesh.neighbour[f] as usize] += a;
             }
@@ -199,8 +199,8 @@ pub struct ModelProblem<'a> {
 pub fn mean_cell_size(bodies: &[Body]) -> f64 {
     let (mut sum, mut n) = (0.0, 0usize);
     for b in bodies.iter().filter(|b| !b.rigid) {
-        for d in &b.geom.delta[..b.mesh.n_internal_faces()] {
-            sum += d.norm();
+        for f in 0..b.mesh.n_internal_faces() {
+            sum += b.geom.delta(&b.mesh, f).norm();
             n += 1;
         }
     }

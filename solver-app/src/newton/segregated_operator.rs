@@ -303,7 +303,7 @@ impl SegregatedOperator {
                 for f in p.faces() {
                     let a = m.face_coefficient(&b.geom, f);
                     let o = b.offset + b.mesh.owner[f] as usize;
-                    let n = b.geom.face_normals[f];
+                    let n = b.geom.face_normal(f);
                     for c in 0..3 {
                         let add = match cond {
                             PatchCondition::Displacement(_) => a,

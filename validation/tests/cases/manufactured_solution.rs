@@ -121,7 +121,7 @@ value = [0, 0, 0]
             }
             PatchCondition::Traction(t) => {
                 for (i, f) in p.faces().enumerate() {
-                    let n = b.geom.face_normals[f];
+                    let n = b.geom.face_normal(f);
                     t[i] = stress_exact(&b.geom.face_centres[f]) * n;
                     tractions += 1;
                 }

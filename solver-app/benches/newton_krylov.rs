@@ -7,52 +7,17 @@
 //! increment bench prints its Newton, Krylov and residual counts.
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion};
 use fv_nonlinear::{Frozen, NonlinearProblem};
-use solver_app::case::{parse_case, Case};
 use solver_app::contact_coupling::ContactSet;
-use solver_app::mesh_loading::load_mesh;
-use solver_app::model::{build_bodies, Body};
 use solver_app::newton::NewtonKrylovSolver;
 use solver_app::nonlinear_solver::NonlinearSolver;
 
-fn case(cells: usize) -> Case {
-    let text = format!(
-        r#"
-title = "box"
-[time]
-end = 1.0
-steps = 1
-[solver]
-nonlinear = "newton-krylov"
-tolerance = 1e-6
-[[body]]
-name = "box"
-mesh = {{ generator = "box", min = [0, 0, 0], max = [1, 1, 1], cells = [{cells}, {cells}, {cells}] }}
-material = {{ model = "linear-elastic", E = 200e9, nu = 0.3 }}
-[body.boundary.zmin]
-type = "displacement"
-value = [0, 0, 0]
-[body.boundary.zmax]
-type = "displacement"
-value = [0.001, 0, -0.01]
-"#
-    );
-    match parse_case(&text, std::path::Path::new("box.toml")) {
-        Ok(c) => c,
-        Err(e) => panic!("{e}"),
-    }
-}
+mod common;
+use common::{box_bodies as bodies, box_case};
 
-fn bodies(case: &Case) -> Vec<Body> {
-    let mesh = match load_mesh(&case.bodies[0].mesh, 0, &case.source) {
-        Ok(m) => m,
-        Err(e) => panic!("{e}"),
-    };
-    let mut bodies = match build_bodies(case, vec![mesh]) {
-        Ok(b) => b,
-        Err(e) => panic!("{e}"),
-    };
-    bodies[0].refresh_conditions(1.0);
-    bodies
+const SOLVER: &str = "nonlinear = \"newton-krylov\"\ntolerance = 1e-6";
+
+fn case(cells: usize) -> solver_app::case::Case {
+    box_case(cells, SOLVER)
 }
 
 fn residual_evaluation(c: &mut Criterion) {

@@ -34,7 +34,7 @@ pub use mesh::{MeshSpec, GENERATORS};
 pub use settings::{
     Acceleration, Analysis, AnalysisKind, CouplingFallback, LinearMethod, LinearSettings,
     OnNonConvergence, OutputSettings, Predictor, SolverSettings, StrainKind, TimeControl,
-    ANDERSON_LINEAR_TOLERANCE,
+    ANDERSON_LINEAR_TOLERANCE, NEWTON_FINAL_ATTEMPT_ITERATIONS,
 };
 pub use source::CaseSource;
 pub use values::{Rotation, ScalarValue, VectorValue};

@@ -29,6 +29,11 @@ pub trait NonlinearSolver {
     /// new increment): the next attempt starts more cautiously.
     fn set_divergence_retries(&mut self, retries: u32);
 
+    /// Whether the next attempt is the increment's last: no smaller step
+    /// follows if it fails, so a method that gives up early on slow
+    /// progress (to let a cut-back try) may iterate on instead.
+    fn set_final_attempt(&mut self, _last: bool) {}
+
     /// Solves one increment; on entry the bodies hold the converged state
     /// of the previous one and the conditions of this one, on exit the
     /// fields are those of the final iterate.

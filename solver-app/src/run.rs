@@ -327,6 +327,7 @@ fn run_case_noting(
             path.subtract_from(&path_end);
             solver.set_step(&path, t0, t1);
             solver.set_divergence_retries(diverged);
+            solver.set_final_attempt(opts.no_cutbacks || cuts >= MAX_CUTBACKS);
             let attempt = solver.solve_increment(&mut bodies, &mut contacts, &mut |outer, res| {
                 if trace_outer {
                     eprintln!("  outer {outer}: residual {res:.3e}");

@@ -164,6 +164,7 @@ every = 5
             },
             rhie_chow: 0.0,
             rhie_chow_given: true,
+            max_outer_given: true,
             rhie_chow_history: fv_discretise::RhieChowHistory::Accumulated,
             acceleration: Acceleration::Anderson,
             acceleration_depth: 8,

@@ -16,7 +16,7 @@ pub mod residual;
 pub mod segregated_operator;
 mod start;
 
-use crate::case::{LinearMethod, SolverSettings};
+use crate::case::{LinearMethod, SolverSettings, NEWTON_FINAL_ATTEMPT_ITERATIONS};
 use crate::contact_coupling::ContactSet;
 use crate::model::Body;
 use crate::predictor::PathChange;
@@ -39,6 +39,10 @@ const MAX_NEWTON_SOLVES: usize = 40;
 /// The Newton–Krylov method and its workspaces (built once per run).
 pub struct NewtonKrylovSolver {
     newton: NewtonKrylov,
+    /// The Newton parameters of an attempt that a cut-back may follow,
+    /// and of the increment's last attempt.
+    attempt_params: NewtonParams,
+    final_attempt_params: NewtonParams,
     layout: StateLayout,
     operator: SegregatedOperator,
     /// The assembled Jacobian, once it preconditions.
@@ -88,8 +92,20 @@ impl NewtonKrylovSolver {
         let n = layout.len();
         let preconditioning = settings.linear.preconditioner;
         let direct = settings.linear.method == LinearMethod::Direct;
+        let attempt_params = newton_params(settings);
+        let final_attempt_params = NewtonParams {
+            stall_abort_iterations: 0,
+            max_iterations: if settings.max_outer_given {
+                settings.max_outer
+            } else {
+                NEWTON_FINAL_ATTEMPT_ITERATIONS.max(settings.max_outer)
+            },
+            ..attempt_params
+        };
         NewtonKrylovSolver {
-            newton: NewtonKrylov::new(n, newton_params(settings)),
+            newton: NewtonKrylov::new(n, attempt_params),
+            attempt_params,
+            final_attempt_params,
             operator: SegregatedOperator::new(bodies, &layout, direct),
             jacobian: (preconditioning == Preconditioning::Jacobian)
                 .then(|| AssembledJacobian::new(bodies, &layout)),
@@ -279,6 +295,16 @@ impl crate::nonlinear_solver::NonlinearSolver for NewtonKrylovSolver {
     }
 
     fn set_divergence_retries(&mut self, _retries: u32) {}
+
+    /// The last attempt neither stops on slow progress nor, unless the
+    /// case gives `max_outer`, after [`crate::case::NEWTON_MAX_ITERATIONS`].
+    fn set_final_attempt(&mut self, last: bool) {
+        self.newton.params = if last {
+            self.final_attempt_params
+        } else {
+            self.attempt_params
+        };
+    }
 
     fn solve_increment(
         &mut self,

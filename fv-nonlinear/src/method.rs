@@ -9,13 +9,13 @@ pub enum NonlinearMethod {
     /// `"segregated"`: the thesis's outer (Picard) loop — one linear solve
     /// per displacement component with the compact Laplacian, the explicit
     /// rest lagged (§3.3), contact coupled explicitly or implicitly.
-    #[default]
     Segregated,
     /// `"newton-krylov"`: Newton's method on the whole residual — bodies,
     /// materials and contact — with matrix-free Jacobian products, GMRES
     /// preconditioned by the segregated operator and the contact springs,
     /// Eisenstat–Walker forcing and a non-monotone line search
-    /// ([`crate::NewtonKrylov`]).
+    /// ([`crate::NewtonKrylov`]). The default.
+    #[default]
     NewtonKrylov,
 }
 

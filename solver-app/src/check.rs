@@ -60,6 +60,70 @@ pub fn mesh_report(case: &Case, bodies: &[Body]) -> String {
     s
 }
 
+/// The nonlinear method and the settings it chose, and why (`fvc check`
+/// and the first lines of a run's log).
+pub fn solver_report(case: &Case) -> String {
+    use crate::case::NEWTON_FINAL_ATTEMPT_ITERATIONS;
+    use fv_nonlinear::NonlinearMethod;
+    let s = &case.solver;
+    let given = case.source.line_of("solver.nonlinear");
+    let in_file = |line: usize| {
+        case.source
+            .text()
+            .lines()
+            .nth(line.saturating_sub(1))
+            .is_some_and(|l| l.contains(&format!("\"{}\"", s.nonlinear.name())))
+    };
+    let why = match given {
+        Some(line) if in_file(line) => format!("[solver] nonlinear, line {line}"),
+        None if s.nonlinear == NonlinearMethod::default() => "the default".to_owned(),
+        _ => "the command line".to_owned(),
+    };
+    let mut out = format!(
+        "solver: {} ({why}), tolerance {:e}",
+        s.nonlinear.name(),
+        s.tolerance
+    );
+    match s.nonlinear {
+        NonlinearMethod::NewtonKrylov => {
+            let last = if s.max_outer_given {
+                String::new()
+            } else {
+                format!(
+                    ", {} in an increment's last attempt",
+                    NEWTON_FINAL_ATTEMPT_ITERATIONS.max(s.max_outer)
+                )
+            };
+            let _ = write!(
+                out,
+                " (residual relative to the cells' force scale); at most {} Newton iterations per attempt{last}; GMRES({}) to Eisenstat–Walker forcing terms ≤ {}, preconditioner \"{}\"; a failed step is cut back up to four times",
+                s.max_outer, s.linear.restart, s.linear.tolerance, s.linear.preconditioner
+            );
+        }
+        NonlinearMethod::Segregated => {
+            let _ = write!(
+                out,
+                " (relative correction); at most {} outer iterations per increment; acceleration {}, relaxation {}",
+                s.max_outer,
+                match s.acceleration {
+                    crate::case::Acceleration::None => "none",
+                    crate::case::Acceleration::Anderson => "anderson",
+                },
+                s.relaxation
+            );
+        }
+    }
+    let _ = write!(
+        out,
+        "; predictor {}",
+        match s.predictor {
+            crate::case::Predictor::None => "none",
+            crate::case::Predictor::Linear => "linear",
+        }
+    );
+    out
+}
+
 /// The `type` name of a boundary condition.
 pub fn spec_name(s: &crate::case::BoundarySpec) -> &'static str {
     use crate::case::BoundarySpec as B;

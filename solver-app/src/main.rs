@@ -72,6 +72,7 @@ fn main() -> ExitCode {
             match set_up_with_contacts(&case) {
                 Ok((bodies, contacts)) => {
                     print!("{}", solver_app::check::mesh_report(&case, &bodies));
+                    println!("{}", solver_app::check::solver_report(&case));
                     for n in bodies.iter().flat_map(|b| &b.setup_notes) {
                         println!("note: {n}");
                     }

@@ -230,6 +230,7 @@ fn run_case_noting(
         cells,
         case.time.steps
     ));
+    log.info(&crate::check::solver_report(case));
     if let Some(note) = note {
         log.warn(note);
         summary.coupling_switched.push(note.to_owned());

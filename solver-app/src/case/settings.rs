@@ -215,6 +215,9 @@ impl Default for LinearSettings {
 /// tightens it as Newton converges).
 pub const NEWTON_FORCING_MAX: f64 = 0.1;
 
+/// The segregated method's default outer iterations per increment.
+pub const SEGREGATED_MAX_OUTER: usize = 20000;
+
 /// Newton–Krylov's default Newton iterations per increment.
 pub const NEWTON_MAX_ITERATIONS: usize = 50;
 
@@ -242,15 +245,16 @@ impl LinearSettings {
 /// `[solver]`: the nonlinear method and its settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SolverSettings {
-    /// How an increment is solved (default segregated).
+    /// How an increment is solved (default Newton–Krylov).
     pub nonlinear: NonlinearMethod,
     /// In (0, 1), default 1e-6. Segregated: the relative correction of the
     /// outer loop. Newton–Krylov: the residual norm relative to the force
     /// scale ‖(Σ_f |force through f|)_P‖ over the cells (the forces each
     /// cell balances).
     pub tolerance: f64,
-    /// Nonlinear iterations per increment (>= 1; default 20000 outer
-    /// iterations of the segregated method, 50 Newton iterations).
+    /// Nonlinear iterations per increment (>= 1; default
+    /// [`SEGREGATED_MAX_OUTER`] outer iterations of the segregated method,
+    /// [`NEWTON_MAX_ITERATIONS`] Newton iterations).
     pub max_outer: usize,
     /// Whether the case gives `max_outer`; if not, Newton–Krylov's last
     /// attempt at an increment (no cut-back left) may run
@@ -290,13 +294,13 @@ pub struct SolverSettings {
 impl Default for SolverSettings {
     fn default() -> Self {
         Self {
-            nonlinear: NonlinearMethod::Segregated,
+            nonlinear: NonlinearMethod::NewtonKrylov,
             tolerance: 1e-6,
-            max_outer: 20000,
+            max_outer: NEWTON_MAX_ITERATIONS,
             max_outer_given: false,
             relaxation: 1.0,
             on_nonconvergence: OnNonConvergence::Abort,
-            linear: LinearSettings::default(),
+            linear: LinearSettings::for_newton(),
             rhie_chow: 0.1,
             rhie_chow_given: false,
             rhie_chow_history: RhieChowHistory::Incremental,
@@ -455,21 +459,39 @@ fn tolerance(n: &super::reader::Node<'_>) -> Res<f64> {
 }
 
 impl SolverSettings {
-    /// The defaults for `analysis`: as [`Default`] (the thesis's plain
-    /// outer loop), with the linear predictor under large strain (where it
-    /// halves the outer iterations of curved beams and die drawing at
-    /// unchanged results), and, for a case without contact, Anderson
+    /// These settings with `method`, and its own defaults of the
+    /// iteration count and the linear solver.
+    pub fn for_method(&self, method: NonlinearMethod) -> Self {
+        let mut s = *self;
+        s.nonlinear = method;
+        match method {
+            NonlinearMethod::NewtonKrylov => {
+                s.max_outer = NEWTON_MAX_ITERATIONS;
+                s.linear = LinearSettings::for_newton();
+            }
+            NonlinearMethod::Segregated => {
+                s.max_outer = SEGREGATED_MAX_OUTER;
+                s.linear = LinearSettings::for_acceleration(s.acceleration);
+            }
+        }
+        s
+    }
+
+    /// The defaults for `analysis`: as [`Default`] (Newton–Krylov), with
+    /// the linear predictor under large strain (where it halves the outer
+    /// iterations of curved beams and die drawing at unchanged results),
+    /// and, for the segregated method on a case without contact, Anderson
     /// acceleration with its linear tolerance: 3–170× fewer outer
-    /// iterations on every body measured alone (README, "Outer
-    /// iterations"), while with contact it gains nothing yet.
+    /// iterations on every body measured alone (docs/solver-notes.md,
+    /// "Outer iterations"), while with contact it gains nothing yet.
     pub fn for_analysis(analysis: &Analysis, has_contact: bool) -> Self {
         let mut s = Self::default();
         if analysis.strain == StrainKind::Large {
             s.predictor = Predictor::Linear;
         }
         if !has_contact {
+            // the segregated method's (SolverSettings::for_method)
             s.acceleration = Acceleration::Anderson;
-            s.linear = LinearSettings::for_acceleration(s.acceleration);
         }
         s
     }
@@ -480,15 +502,7 @@ pub(crate) fn solver_without_table(
     defaults: &SolverSettings,
     nonlinear: Option<NonlinearMethod>,
 ) -> SolverSettings {
-    let mut s = *defaults;
-    if let Some(m) = nonlinear {
-        s.nonlinear = m;
-    }
-    if s.nonlinear == NonlinearMethod::NewtonKrylov {
-        s.max_outer = NEWTON_MAX_ITERATIONS;
-        s.linear = LinearSettings::for_newton();
-    }
-    s
+    defaults.for_method(nonlinear.unwrap_or(defaults.nonlinear))
 }
 
 pub(crate) fn solver(
@@ -510,8 +524,7 @@ pub(crate) fn solver(
         "predictor",
         "coupling_fallback",
     ])?;
-    let mut d = *defaults;
-    let nonlinear = t.opt("nonlinear", d.nonlinear, |n| {
+    let nonlinear = t.opt("nonlinear", defaults.nonlinear, |n| {
         n.choice(
             "nonlinear method",
             &NonlinearMethod::ALL.map(|m| (m.name(), m)),
@@ -519,9 +532,7 @@ pub(crate) fn solver(
     })?;
     let nonlinear = nonlinear_override.unwrap_or(nonlinear);
     let newton = nonlinear == NonlinearMethod::NewtonKrylov;
-    if newton {
-        d.max_outer = NEWTON_MAX_ITERATIONS;
-    }
+    let d = defaults.for_method(nonlinear);
     let acceleration = t.opt("acceleration", d.acceleration, |n| {
         n.choice(
             "outer-iteration acceleration",

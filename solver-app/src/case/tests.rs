@@ -3,6 +3,7 @@
 use std::path::{Path, PathBuf};
 
 use super::*;
+use fv_nonlinear::NonlinearMethod;
 
 const MIN: &str = r#"
 title = "t"
@@ -50,15 +51,26 @@ fn defaults() {
     assert_eq!(c.time, TimeControl::uniform(1.0, 10));
     assert!((c.time.dt() - 0.1).abs() < 1e-15);
     assert_eq!(c.solver.tolerance, 1e-6);
-    assert_eq!(c.solver.max_outer, 20000);
+    // Newton–Krylov by default, with GMRES and Eisenstat–Walker forcing
+    // up to 0.1
+    assert_eq!(c.solver.nonlinear, NonlinearMethod::NewtonKrylov);
+    assert_eq!(c.solver.max_outer, 50);
+    assert!(!c.solver.max_outer_given);
+    assert_eq!(c.solver.linear.method, LinearMethod::Gmres);
+    assert_eq!(c.solver.linear.tolerance, 0.1);
+    assert_eq!(c.solver.linear.max_iterations, 200);
     assert_eq!(c.solver.relaxation, 1.0);
     assert_eq!(c.solver.on_nonconvergence, OnNonConvergence::Abort);
-    assert_eq!(c.solver.linear.method, LinearMethod::PcgIc);
+    // the segregated method's own defaults when it is asked for
+    let seg = parse(&MIN.replace("[[body]]", "[solver]\nnonlinear = \"segregated\"\n[[body]]"));
+    assert_eq!(seg.solver.nonlinear, NonlinearMethod::Segregated);
+    assert_eq!(seg.solver.max_outer, 20000);
+    assert_eq!(seg.solver.linear.method, LinearMethod::PcgIc);
     // no contact: Anderson acceleration, with its linear tolerance
-    assert_eq!(c.solver.acceleration, Acceleration::Anderson);
-    assert_eq!(c.solver.acceleration_depth, 10);
-    assert_eq!(c.solver.linear.tolerance, ANDERSON_LINEAR_TOLERANCE);
-    assert_eq!(c.solver.linear.max_iterations, 500);
+    assert_eq!(seg.solver.acceleration, Acceleration::Anderson);
+    assert_eq!(seg.solver.acceleration_depth, 10);
+    assert_eq!(seg.solver.linear.tolerance, ANDERSON_LINEAR_TOLERANCE);
+    assert_eq!(seg.solver.linear.max_iterations, 500);
     assert_eq!(c.solver.rhie_chow, 0.1);
     assert_eq!(
         c.solver.rhie_chow_history,
@@ -72,8 +84,12 @@ fn defaults() {
     let with_contact = SolverSettings::for_analysis(&Analysis::default(), true);
     assert_eq!(with_contact, SolverSettings::default());
     assert_eq!(with_contact.acceleration, Acceleration::None);
-    assert_eq!(with_contact.linear.tolerance, 0.1);
-    let plain = parse(&MIN.replace("[[body]]", "[solver]\nacceleration = \"none\"\n[[body]]"));
+    let seg_contact = with_contact.for_method(NonlinearMethod::Segregated);
+    assert_eq!(seg_contact.linear.tolerance, 0.1);
+    let plain = parse(&MIN.replace(
+        "[[body]]",
+        "[solver]\nnonlinear = \"segregated\"\nacceleration = \"none\"\n[[body]]",
+    ));
     assert_eq!(plain.solver.linear.tolerance, 0.1);
     assert_eq!(c.output.directory, PathBuf::from("results"));
     assert_eq!(c.output.every, 1);
@@ -122,6 +138,7 @@ strain = "large"
 end = 2
 step = 0.1
 [solver]
+nonlinear = "segregated"
 tolerance = 1e-8
 max_outer = 300
 relaxation = 0.7
@@ -176,7 +193,7 @@ every = 5
     assert_eq!(c.bodies[0].material.rho, Some(7800.0));
     assert_eq!(c.output.directory, PathBuf::from("out/dir"));
     assert_eq!(c.output.every, 5);
-    assert_eq!(c.source.line_of("solver.linear.method"), Some(20));
+    assert_eq!(c.source.line_of("solver.linear.method"), Some(21));
     let e = fail(&text.replace("\"accumulated\"", "\"total\""));
     assert_eq!(e.key.as_deref(), Some("solver.rhie_chow_history"));
     assert!(
@@ -188,7 +205,7 @@ every = 5
     // tolerance and the history to depth 10; a given tolerance stands
     let accelerated = MIN.replace(
         "[[body]]",
-        "[solver]\nacceleration = \"anderson\"\n[[body]]",
+        "[solver]\nnonlinear = \"segregated\"\nacceleration = \"anderson\"\n[[body]]",
     );
     let c = parse(&accelerated);
     assert_eq!(c.solver.linear.tolerance, ANDERSON_LINEAR_TOLERANCE);
@@ -205,12 +222,12 @@ every = 5
     assert_eq!(parse(&pcg).solver.linear.method, LinearMethod::PcgIc);
     let inline = MIN.replace(
         "[[body]]",
-        "[solver]\nlinear = { method = \"direct\" }\n[[body]]",
+        "[solver]\nnonlinear = \"segregated\"\nlinear = { method = \"direct\" }\n[[body]]",
     );
     let c = parse(&inline);
     assert_eq!(c.solver.linear.method, LinearMethod::Direct);
     assert_eq!(c.solver.linear.tolerance, ANDERSON_LINEAR_TOLERANCE);
-    assert_eq!(c.source.line_of("solver.linear.method"), Some(7));
+    assert_eq!(c.source.line_of("solver.linear.method"), Some(8));
 }
 
 #[test]

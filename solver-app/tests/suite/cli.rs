@@ -417,12 +417,14 @@ fn unconstrained_body_is_an_input_error() {
 }
 
 /// A block resting on a fixed base, loaded by a pressure on its top and
-/// held in y by the contact alone (plane strain).
+/// held in y by the contact alone (plane strain); solved by the segregated
+/// method, whose explicit coupling cannot hold it.
 const RESTING: &str = r#"title = "resting"
 [time]
 end = 1.0
 steps = 2
 [solver]
+nonlinear = "segregated"
 tolerance = 1e-6
 [[body]]
 name = "base"
@@ -491,7 +493,7 @@ fn a_body_held_by_contact_alone_is_coupled_implicitly() {
     );
 }
 
-/// Two blocks stacked in plane strain, on rollers (symmetry) at the bottom
+/// The segregated method on two blocks stacked in plane strain, on rollers (symmetry) at the bottom
 /// and the left, the top face pushed down by 0.008 (a normal
 /// displacement): uniaxial stress σ_yy = E' (d − g) / 0.8, with
 /// E' = E / (1 − ν²) and g the penalty's uniform penetration. Explicit
@@ -502,6 +504,7 @@ const STACKED: &str = r#"title = "stacked"
 end = 1.0
 steps = 2
 [solver]
+nonlinear = "segregated"
 tolerance = 1e-6
 max_outer = 300
 [[body]]
@@ -1079,7 +1082,10 @@ fn a_constant_load_is_not_cut_back() {
     let dir = tempfile::tempdir().unwrap();
     let case = TUBE_PAST_ITS_LIMIT
         .replace("{ table = [[0.0, 0.0], [1.0, 0.2]] }", "0.1")
-        .replace("tolerance = 1e-8", "tolerance = 1e-8\nmax_outer = 5");
+        .replace(
+            "tolerance = 1e-8",
+            "nonlinear = \"segregated\"\ntolerance = 1e-8\nmax_outer = 5",
+        );
     let (code, _, err) = run_quietly(dir.path(), case.as_bytes());
     assert_eq!(code, 1, "{err}");
     assert!(err.contains("not redone in smaller steps"), "{err}");

@@ -105,6 +105,15 @@ pub enum CylinderMesh {
 /// `mesh` up to pull distance `end` (m; the case's `[time] end` and
 /// `steps` scaled to keep the step), with the die as master or
 /// (`swapped`) as slave.
+///
+/// Swapped, the case runs the segregated method. Newton–Krylov (2026-11-29)
+/// runs the pull to the end, 8 Newton iterations per increment, but at
+/// 0.19 m it converges (residual 5.7e-7) to a state in which the rigid
+/// die's face at the cylinder's pulled end presses on the end corner at
+/// 727 kPa (the segregated method: 27 Pa): the pulling force is 565 N
+/// there, 13 % under its neighbours, and the steady window's spread
+/// 13.9 %. Two converged states of the same step: the master surface ends
+/// at that corner, and which one is reached depends on the path.
 pub fn run(mesh: CylinderMesh, end: f64, swapped: bool) -> DieRun {
     let cylinder = match mesh {
         CylinderMesh::Benchmark => "cylinder.msh",
@@ -112,7 +121,8 @@ pub fn run(mesh: CylinderMesh, end: f64, swapped: bool) -> DieRun {
     };
     let (dir, mut text) = read_case_on_mesh("die-drawing", "case.toml", "cylinder.msh", cylinder);
     if swapped {
-        text = swap_master_slave(&text, "die/contact", "cylinder/outer");
+        text = swap_master_slave(&text, "die/contact", "cylinder/outer")
+            .replace("[solver]\n", "[solver]\nnonlinear = \"segregated\"\n");
     }
     text = shorten(&text, end);
     let (out, history) = run_toml_in_with_history(&text, Some(&dir));

@@ -367,7 +367,7 @@ impl Body {
         if self.rigid {
             return;
         }
-        self.momentum.restore_start(&self.mesh);
+        self.momentum.restore_start(&self.mesh, &self.geom);
         self.force_controls.clone_from(&self.force_controls_saved);
         self.momentum.conditions.clone_from(&self.conditions_saved);
     }

@@ -1459,7 +1459,7 @@ fn update_body_fields(b: &mut Body, params: &MomentumParams) -> BodyUpdate {
     b.update_boundary_values();
     let m = &mut b.momentum;
     let t1 = Instant::now();
-    let bad = m.update_gradient_and_stress(&b.mesh);
+    let bad = m.update_gradient_and_stress(&b.mesh, &b.geom);
     let t2 = Instant::now();
     if let Some((cell, jacobian)) = bad {
         out.inverted = Some(format!(

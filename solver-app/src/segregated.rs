@@ -1384,6 +1384,10 @@ impl SegregatedSolver {
                 break;
             }
         }
+        // the history is dead until the next increment restarts it
+        if let Some(a) = &mut self.anderson {
+            a.release_pages();
+        }
         if let Some(msg) = self.update_fields(bodies)? {
             // a converged state must be admissible
             return Err(SolveError::Material(msg));

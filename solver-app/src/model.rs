@@ -1109,7 +1109,7 @@ mod tests {
             .iter()
             .map(|b| CellShape {
                 kind: CellType::Pyramid,
-                nodes: vec![b[0], b[1], b[2], b[3], 8],
+                nodes: [b[0], b[1], b[2], b[3], 8].into_iter().collect(),
             })
             .collect();
         PolyMesh::from_cells(points, cells, &[]).expect("pyramids")

@@ -546,7 +546,7 @@ impl SolidMomentum {
             .zip(&self.rc_increment)
             .enumerate()
         {
-            let w = geom.weight[f];
+            let w = geom.weight(mesh, f);
             let grad_f = self.grad_u[mesh.owner[f] as usize] * w
                 + self.grad_u[mesh.neighbour[f] as usize] * (1.0 - w);
             *c += grad_f.transpose() * *c + rc;
@@ -1135,7 +1135,7 @@ impl SolidMomentum {
         for f in 0..ni {
             let o = mesh.owner[f] as usize;
             let nb = mesh.neighbour[f] as usize;
-            let w = geom.weight[f];
+            let w = geom.weight(mesh, f);
             let sig_f = sig_cells[o] * w + sig_cells[nb] * (1.0 - w);
             let mut force = sig_f * geom.face_areas[f];
             if alpha != 0.0 {

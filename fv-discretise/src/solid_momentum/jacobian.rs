@@ -230,7 +230,7 @@ impl SolidMomentum {
         for f in 0..ni {
             let o = mesh.owner[f] as usize;
             let n = mesh.neighbour[f] as usize;
-            let w = geom.weight[f];
+            let w = geom.weight(mesh, f);
             let l = times_vector(&geom.face_areas[f]);
             let s = alpha * self.k * geom.face_mag[f] / self.dn[f];
             // ∂force/∂G_f from the Rhie–Chow term and the carried forces

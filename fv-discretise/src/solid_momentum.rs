@@ -546,7 +546,7 @@ impl SolidMomentum {
             .zip(&self.rc_increment)
             .enumerate()
         {
-            let w = geom.weight[f];
+            let w = geom.weight(mesh, f);
             let grad_f = self.grad_u[mesh.owner[f] as usize] * w
                 + self.grad_u[mesh.neighbour[f] as usize] * (1.0 - w);
             *c += grad_f.transpose() * *c + rc;
@@ -606,7 +606,7 @@ impl SolidMomentum {
 
     /// Back to the fields of [`Self::save_start`], the trial material state
     /// dropped: the increment is redone (with a smaller step).
-    pub fn restore_start(&mut self, mesh: &PolyMesh) {
+    pub fn restore_start(&mut self, mesh: &PolyMesh, geom: &MeshGeometry) {
         self.u.copy_from_slice(&self.saved.0);
         self.u_b.copy_from_slice(&self.saved.1);
         self.snd_b.copy_from_slice(&self.saved.2);
@@ -637,7 +637,7 @@ impl SolidMomentum {
             // non-finite (the retry then diverged in its first iteration):
             // the gradient of the restored fields
             self.gradient
-                .vector_gradient(mesh, &self.u, &self.u_b, &mut self.grad_u);
+                .vector_gradient(mesh, geom, &self.u, &self.u_b, &mut self.grad_u);
         }
         if self.law.is_updated_lagrangian() {
             for ((d, u), o) in self.du.iter_mut().zip(&self.u).zip(&self.u_old) {
@@ -921,7 +921,11 @@ impl SolidMomentum {
     /// the outer loop may overshoot, and only a converged state has to be
     /// admissible. Returns the first such cell and its det f, if any (the
     /// caller rejects a converged state that still has one).
-    pub fn update_gradient_and_stress(&mut self, mesh: &PolyMesh) -> Option<(usize, f64)> {
+    pub fn update_gradient_and_stress(
+        &mut self,
+        mesh: &PolyMesh,
+        geom: &MeshGeometry,
+    ) -> Option<(usize, f64)> {
         {
             let (u, u_b) = if self.law.is_updated_lagrangian() {
                 (&self.du, &self.du_b)
@@ -929,7 +933,7 @@ impl SolidMomentum {
                 (&self.u, &self.u_b)
             };
             self.gradient
-                .vector_gradient(mesh, u, u_b, &mut self.grad_u);
+                .vector_gradient(mesh, geom, u, u_b, &mut self.grad_u);
         }
         self.update_stress()
     }
@@ -1131,7 +1135,7 @@ impl SolidMomentum {
         for f in 0..ni {
             let o = mesh.owner[f] as usize;
             let nb = mesh.neighbour[f] as usize;
-            let w = geom.weight[f];
+            let w = geom.weight(mesh, f);
             let sig_f = sig_cells[o] * w + sig_cells[nb] * (1.0 - w);
             let mut force = sig_f * geom.face_areas[f];
             if alpha != 0.0 {

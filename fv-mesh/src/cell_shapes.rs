@@ -73,5 +73,87 @@ pub struct CellShape {
     /// The shape.
     pub kind: CellType,
     /// Global point indices, `kind.n_nodes()` of them.
-    pub nodes: Vec<u32>,
+    pub nodes: CellNodes,
+}
+
+/// Most nodes of a standard cell (the hexahedron's).
+pub const MAX_CELL_NODES: usize = 8;
+
+/// The node indices of one cell, held in place (up to
+/// [`MAX_CELL_NODES`]); reads as a slice. A vector per cell cost 48 B
+/// more per cell (pointer and capacity, and the allocation's own
+/// bookkeeping): 12 MB at 64³.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CellNodes {
+    ids: [u32; MAX_CELL_NODES],
+    len: u8,
+}
+
+impl CellNodes {
+    /// The nodes as a slice.
+    pub fn as_slice(&self) -> &[u32] {
+        &self.ids[..self.len as usize]
+    }
+}
+
+impl std::ops::Deref for CellNodes {
+    type Target = [u32];
+    fn deref(&self) -> &[u32] {
+        self.as_slice()
+    }
+}
+
+impl std::ops::DerefMut for CellNodes {
+    fn deref_mut(&mut self) -> &mut [u32] {
+        &mut self.ids[..self.len as usize]
+    }
+}
+
+impl FromIterator<u32> for CellNodes {
+    /// # Panics
+    /// With more than [`MAX_CELL_NODES`] nodes (no standard cell has more;
+    /// readers check the count of their elements first).
+    fn from_iter<I: IntoIterator<Item = u32>>(iter: I) -> Self {
+        let mut nodes = CellNodes {
+            ids: [0; MAX_CELL_NODES],
+            len: 0,
+        };
+        for p in iter {
+            assert!(
+                (nodes.len as usize) < MAX_CELL_NODES,
+                "a cell has at most {MAX_CELL_NODES} nodes"
+            );
+            nodes.ids[nodes.len as usize] = p;
+            nodes.len += 1;
+        }
+        nodes
+    }
+}
+
+impl From<&[u32]> for CellNodes {
+    fn from(nodes: &[u32]) -> Self {
+        nodes.iter().copied().collect()
+    }
+}
+
+impl From<Vec<u32>> for CellNodes {
+    fn from(nodes: Vec<u32>) -> Self {
+        nodes.into_iter().collect()
+    }
+}
+
+impl<'a> IntoIterator for &'a CellNodes {
+    type Item = &'a u32;
+    type IntoIter = std::slice::Iter<'a, u32>;
+    fn into_iter(self) -> Self::IntoIter {
+        self.as_slice().iter()
+    }
+}
+
+impl<'a> IntoIterator for &'a mut CellNodes {
+    type Item = &'a mut u32;
+    type IntoIter = std::slice::IterMut<'a, u32>;
+    fn into_iter(self) -> Self::IntoIter {
+        self.iter_mut()
+    }
 }

@@ -112,7 +112,10 @@ pub fn extrude_plane(coords: &[Vector], plane: &PlaneElements) -> Result<Extrude
         caps.push(top.clone());
         let mut nodes = b;
         nodes.extend(top);
-        cells.push(CellShape { kind, nodes });
+        cells.push(CellShape {
+            kind,
+            nodes: nodes.into(),
+        });
         cell_entity.push(*entity);
     }
 

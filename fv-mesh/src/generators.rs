@@ -63,7 +63,7 @@ fn structured(
             for i in 0..nx {
                 shapes.push(CellShape {
                     kind: CellType::Hexa,
-                    nodes: vec![
+                    nodes: [
                         idx(i, j, k),
                         idx(i + 1, j, k),
                         idx(i + 1, j + 1, k),
@@ -72,7 +72,9 @@ fn structured(
                         idx(i + 1, j, k + 1),
                         idx(i + 1, j + 1, k + 1),
                         idx(i, j + 1, k + 1),
-                    ],
+                    ]
+                    .into_iter()
+                    .collect(),
                 });
             }
         }
@@ -231,7 +233,7 @@ pub fn box_tet_mesh(min: Vector, max: Vector, cells: [usize; 3]) -> Result<PolyM
                     }
                     shapes.push(CellShape {
                         kind: CellType::Tetra,
-                        nodes,
+                        nodes: nodes.into(),
                     });
                 }
             }

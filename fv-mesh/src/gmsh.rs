@@ -694,7 +694,10 @@ fn convert(
                             kind.n_nodes()
                         )));
                     }
-                    cells.push(CellShape { kind, nodes });
+                    cells.push(CellShape {
+                        kind,
+                        nodes: nodes.into(),
+                    });
                     cell_volume_entity.push(block.entity_tag);
                 }
             }

@@ -23,7 +23,7 @@ mod wedge_point_constraint;
 pub mod generators;
 pub mod spherical_shell;
 
-pub use cell_shapes::{CellShape, CellType};
+pub use cell_shapes::{CellNodes, CellShape, CellType, MAX_CELL_NODES};
 pub use cell_to_point::{CellToPoint, PointFit, EIGEN_TOLERANCE, MAX_WEIGHT_SUM};
 pub use error::MeshError;
 pub use extrude_plane::{FRONT_AND_BACK, PLANE_THICKNESS};

@@ -158,7 +158,7 @@ pub fn spherical_shell_mesh(
             nodes.extend(q.iter().map(|&s| at(layer + 1, s)));
             shapes.push(CellShape {
                 kind: CellType::Hexa,
-                nodes,
+                nodes: nodes.into(),
             });
         }
     }
@@ -242,14 +242,16 @@ fn axisymmetric_wedge(radii: &[f64], quarter: usize) -> Result<PolyMesh, MeshErr
     for k in 0..radial {
         shapes.push(CellShape {
             kind: CellType::Wedge,
-            nodes: vec![
+            nodes: [
                 at(k, 0, 0),
                 at(k, 1, -1),
                 at(k, 1, 1),
                 at(k + 1, 0, 0),
                 at(k + 1, 1, -1),
                 at(k + 1, 1, 1),
-            ],
+            ]
+            .into_iter()
+            .collect(),
         });
         for j in 1..q {
             let mut nodes = Vec::with_capacity(8);
@@ -263,7 +265,7 @@ fn axisymmetric_wedge(radii: &[f64], quarter: usize) -> Result<PolyMesh, MeshErr
             }
             shapes.push(CellShape {
                 kind: CellType::Hexa,
-                nodes,
+                nodes: nodes.into(),
             });
         }
     }

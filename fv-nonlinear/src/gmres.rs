@@ -21,7 +21,7 @@
 //! `restart + 1` vectors and the Hessenberg matrix — is allocated once
 //! ([`Gmres::new`]); a solve allocates nothing.
 use crate::problem::Inadmissible;
-use crate::vector_ops::{axpy, dot, norm, scale};
+use crate::vector_ops::{axpy, dot, norm, release_pages, scale};
 
 /// Reorthogonalise when ‖w‖ after Gram–Schmidt is below this fraction of
 /// its norm before.
@@ -284,32 +284,6 @@ impl Gmres {
         }
     }
 }
-
-/// Drops the whole pages inside `v` (they read as zeros afterwards).
-#[cfg(unix)]
-fn release_pages(v: &mut [f64]) {
-    const PAGE: usize = 4096;
-    let start = v.as_mut_ptr() as usize;
-    let end = start + std::mem::size_of_val(v);
-    let (first, last) = (start.next_multiple_of(PAGE), end / PAGE * PAGE);
-    if last > first {
-        // SAFETY: [first, last) lies inside `v`, which is borrowed mutably
-        // and holds plain f64s (any bit pattern, zeros included, is one);
-        // MADV_DONTNEED on private anonymous memory only replaces those
-        // pages by zero-filled ones on the next access (a failure, e.g.
-        // pages of another kind, leaves them as they are).
-        unsafe {
-            libc::madvise(
-                first as *mut libc::c_void,
-                last - first,
-                libc::MADV_DONTNEED,
-            );
-        }
-    }
-}
-
-#[cfg(not(unix))]
-fn release_pages(_v: &mut [f64]) {}
 
 #[cfg(test)]
 mod tests {

@@ -1,7 +1,8 @@
 //! Dense vector kernels of the Krylov solver, parallel over fixed chunks so
 //! that the results are the same to the bit whatever the number of threads
 //! (each chunk's partial sum is formed alone, the partial sums are added in
-//! chunk order).
+//! chunk order); and [`release_pages`] for work vectors whose contents are
+//! dead between uses.
 use rayon::prelude::*;
 
 /// Entries per chunk.
@@ -60,6 +61,35 @@ pub fn scale(alpha: f64, y: &mut [f64]) {
         kernel(y);
     }
 }
+
+/// Returns the whole pages inside `v` to the operating system: they read
+/// as zeros afterwards, and are resident again once written (for work
+/// vectors whose contents are dead between uses).
+#[cfg(unix)]
+pub fn release_pages(v: &mut [f64]) {
+    const PAGE: usize = 4096;
+    let start = v.as_mut_ptr() as usize;
+    let end = start + std::mem::size_of_val(v);
+    let (first, last) = (start.next_multiple_of(PAGE), end / PAGE * PAGE);
+    if last > first {
+        // SAFETY: [first, last) lies inside `v`, which is borrowed mutably
+        // and holds plain f64s (any bit pattern, zeros included, is one);
+        // MADV_DONTNEED on private anonymous memory only replaces those
+        // pages by zero-filled ones on the next access (a failure, e.g.
+        // pages of another kind, leaves them as they are).
+        unsafe {
+            libc::madvise(
+                first as *mut libc::c_void,
+                last - first,
+                libc::MADV_DONTNEED,
+            );
+        }
+    }
+}
+
+/// No-op where pages cannot be returned.
+#[cfg(not(unix))]
+pub fn release_pages(_v: &mut [f64]) {}
 
 #[cfg(test)]
 mod tests {

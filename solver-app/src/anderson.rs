@@ -32,7 +32,9 @@
 //! m + 1 vectors per side suffice (m + 2 with separate iterate buffers).
 //! Buffers are allocated as the history first fills (a run that
 //! converges in a few iterations never holds m columns); after that a
-//! step allocates nothing.
+//! step allocates nothing. Between increments their pages go back to the
+//! system ([`AndersonAcceleration::release_pages`]), so that the field
+//! output does not come on top of them.
 use std::ops::Range;
 
 use fv_mesh::Vector;
@@ -113,6 +115,23 @@ impl AndersonAcceleration {
         self.count = 0;
         self.next = 0;
         self.smallest_correction = f64::INFINITY;
+    }
+
+    /// Forgets the history and returns its buffers' pages to the system
+    /// (they are resident again as the next increment's history fills,
+    /// without new allocations): 2 m + 2 columns of the mixed state, 26 MB
+    /// each at 64³, that would otherwise stay resident through the field
+    /// output.
+    pub fn release_pages(&mut self) {
+        self.restart();
+        for v in self.dx.iter_mut().chain(self.df.iter_mut()).chain([
+            &mut self.x,
+            &mut self.f,
+            &mut self.x_prev,
+            &mut self.f_prev,
+        ]) {
+            fv_nonlinear::vector_ops::release_pages(flat(v));
+        }
     }
 
     /// Columns in use (for tests and diagnostics).
@@ -357,6 +376,20 @@ impl AndersonAcceleration {
 
 /// Largest history depth accepted.
 pub const MAX_DEPTH: usize = 20;
+
+// a Vector is three f64s, laid out as [f64; 3] (nalgebra's Matrix is
+// repr(C) around its repr(transparent) ArrayStorage)
+const _: () = assert!(
+    std::mem::size_of::<Vector>() == 3 * std::mem::size_of::<f64>()
+        && std::mem::align_of::<Vector>() == std::mem::align_of::<f64>()
+);
+
+/// The entries of `v`, three per vector.
+fn flat(v: &mut [Vector]) -> &mut [f64] {
+    // SAFETY: a Vector is three f64s without padding (asserted above),
+    // so `v` is 3 len() f64s, borrowed mutably for the returned lifetime
+    unsafe { std::slice::from_raw_parts_mut(v.as_mut_ptr().cast::<f64>(), 3 * v.len()) }
+}
 
 fn dot(a: &[Vector], b: &[Vector]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x.dot(y)).sum()

@@ -45,7 +45,26 @@ fn parse_method(s: &str) -> Result<fv_nonlinear::NonlinearMethod, String> {
     fv_nonlinear::NonlinearMethod::from_name(s).map_err(|e| e.to_string())
 }
 
+/// Fixes glibc's mmap threshold at 128 kB (its default start): from that
+/// size up, an allocation gets pages of its own, returned to the system
+/// when freed. Left dynamic, glibc raises the threshold to the size of
+/// every mapped block freed (up to 32 MB), so the set-up's freed work
+/// arrays (mesh generation, geometry, the least-squares matrices) stayed
+/// in the heap and resident while the later long-lived fields took heap
+/// pages of their own: 64³ box, peak RSS Newton–Krylov 575,848 →
+/// 530,740 kB, segregated 774,808 → 757,368 kB. The solve allocates
+/// nothing per iteration, so the extra system calls are few.
+fn fix_mmap_threshold() {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    // SAFETY: mallopt only sets an allocator parameter; called first in
+    // main, before any other thread exists
+    unsafe {
+        libc::mallopt(libc::M_MMAP_THRESHOLD, 128 * 1024);
+    }
+}
+
 fn main() -> ExitCode {
+    fix_mmap_threshold();
     let cli = match Cli::try_parse() {
         Ok(c) => c,
         Err(e) => {

@@ -367,7 +367,7 @@ impl Body {
         if self.rigid {
             return;
         }
-        self.momentum.restore_start(&self.mesh);
+        self.momentum.restore_start(&self.mesh, &self.geom);
         self.force_controls.clone_from(&self.force_controls_saved);
         self.momentum.conditions.clone_from(&self.conditions_saved);
     }
@@ -1109,7 +1109,7 @@ mod tests {
             .iter()
             .map(|b| CellShape {
                 kind: CellType::Pyramid,
-                nodes: vec![b[0], b[1], b[2], b[3], 8],
+                nodes: [b[0], b[1], b[2], b[3], 8].into_iter().collect(),
             })
             .collect();
         PolyMesh::from_cells(points, cells, &[]).expect("pyramids")

@@ -91,14 +91,19 @@ const ANDERSON_BUDGET_CELLS: usize = 100_000;
 
 /// Bytes per cell of Anderson's history on a large mesh: 2 m + 2 columns
 /// of the mixed state (cells, boundary values, normal derivatives and the
-/// cell gradient, ~105 B per cell of a box), so depth 6 rather than 10 on
-/// a box. Measured, segregated, 1 step (outer iterations, peak RSS, wall):
-/// box64 (262,144 cells) depth 10: 24, 980 MB, 15.6 s; 6: 24, 775 MB,
-/// 13.3 s; 4: 27, 672 MB, 16.6 s. Smaller cases (not capped) at depth
-/// 10 / 6 / 4: axisymmetric bar 70 / 74 / 84 outer iterations; with
-/// `acceleration = "anderson"` hertz-cylinder fine 56 / 53 / 56,
-/// concentric cylinders 34 / 39 / 46, flat punch 89 / 64 / 66.
-const ANDERSON_HISTORY_BYTES_PER_CELL: usize = 1536;
+/// cell gradient, ~100 B per cell of a box), so depth 3 rather than 10 on
+/// a box, and the whole run within 2 kB per cell (the rest of the
+/// segregated method takes ~1.15 kB per cell at 64³). Measured,
+/// segregated, 1 step (outer iterations, peak RSS): box64 (262,144 cells)
+/// depth 10: 24, 980 MB (before the history's pages were released for
+/// the output); 6: 24, 664 MB; 5: 26; 4: 27; 3: 28, 510 MB; a cantilever
+/// 160 × 28 × 28 (125,440 cells, its end moved across) depth 10: 37,
+/// 440 MB; 6: 40, 339 MB; 4: 53, 288 MB; 3: 53, 262 MB; 2: 56. Smaller
+/// cases (not capped) at depth 10 / 6 / 4: axisymmetric bar 70 / 74 / 84
+/// outer iterations; with `acceleration = "anderson"` hertz-cylinder fine
+/// 56 / 53 / 56, concentric cylinders 34 / 39 / 46, flat punch 89 / 64 /
+/// 66.
+const ANDERSON_HISTORY_BYTES_PER_CELL: usize = 896;
 
 /// Anderson's depth for `cells` cells whose mixed state has `n_mixed`
 /// vectors: `depth` on small meshes, else the deepest history of 2 m + 2
@@ -1384,6 +1389,10 @@ impl SegregatedSolver {
                 break;
             }
         }
+        // the history is dead until the next increment restarts it
+        if let Some(a) = &mut self.anderson {
+            a.release_pages();
+        }
         if let Some(msg) = self.update_fields(bodies)? {
             // a converged state must be admissible
             return Err(SolveError::Material(msg));
@@ -1459,7 +1468,7 @@ fn update_body_fields(b: &mut Body, params: &MomentumParams) -> BodyUpdate {
     b.update_boundary_values();
     let m = &mut b.momentum;
     let t1 = Instant::now();
-    let bad = m.update_gradient_and_stress(&b.mesh);
+    let bad = m.update_gradient_and_stress(&b.mesh, &b.geom);
     let t2 = Instant::now();
     if let Some((cell, jacobian)) = bad {
         out.inverted = Some(format!(
@@ -1523,8 +1532,8 @@ mod tests {
         // a box's mixed state: ~4.4 vectors per cell
         let mixed = |cells: usize| cells * 44 / 10;
         assert_eq!(budgeted_depth(10, mixed(32_768), 32_768), 10);
-        assert_eq!(budgeted_depth(10, mixed(262_144), 262_144), 6);
-        assert_eq!(budgeted_depth(4, mixed(262_144), 262_144), 4);
+        assert_eq!(budgeted_depth(10, mixed(262_144), 262_144), 3);
+        assert_eq!(budgeted_depth(2, mixed(262_144), 262_144), 2);
         // a huge mixed state per cell still keeps one column pair
         assert_eq!(budgeted_depth(10, 100 * 262_144, 262_144), 1);
     }

@@ -106,10 +106,8 @@ type Stencil = Vec<(StateNode, M93)>;
 impl SolidMomentum {
     /// The gradient stencils of every cell at the current geometry (the
     /// kinematic faces eliminated).
-    fn gradient_stencils(&self, mesh: &PolyMesh) -> Vec<Stencil> {
+    fn gradient_stencils(&self, mesh: &PolyMesh, geom: &MeshGeometry) -> Vec<Stencil> {
         let ni = mesh.n_internal_faces();
-        let coeff = self.gradient.owner_coefficients();
-        let ncoeff = self.gradient.neighbour_coefficients();
         let mut st: Vec<Stencil> = vec![Vec::new(); mesh.n_cells];
         let add = |s: &mut Stencil, node: StateNode, b: M93| {
             if let Some(e) = s.iter_mut().find(|e| e.0 == node) {
@@ -122,10 +120,11 @@ impl SolidMomentum {
             let o = mesh.owner[f] as usize;
             let n = mesh.neighbour[f] as usize;
             // G_o += c_o (u_n − u_o)ᵀ, G_n −= c_n (u_n − u_o)ᵀ
-            let bo = outer_left(&coeff[f]);
+            let (c_o, c_n) = self.gradient.internal_coefficients(mesh, geom, f);
+            let bo = outer_left(&c_o);
             add(&mut st[o], StateNode::Cell(n as u32), bo);
             add(&mut st[o], StateNode::Cell(o as u32), -bo);
-            let bn = outer_left(&ncoeff[f]);
+            let bn = outer_left(&c_n);
             add(&mut st[n], StateNode::Cell(n as u32), -bn);
             add(&mut st[n], StateNode::Cell(o as u32), bn);
         }
@@ -140,7 +139,7 @@ impl SolidMomentum {
             for f in p.faces() {
                 let b = f - ni;
                 let o = mesh.owner[f] as usize;
-                let c = coeff[f];
+                let c = self.gradient.owner_coefficient(mesh, geom, f);
                 match cond {
                     // Δu_b − Δu_o = 0 (and passive)
                     PatchCondition::Empty => {}
@@ -208,7 +207,7 @@ impl SolidMomentum {
     ) {
         let ni = mesh.n_internal_faces();
         let ul = self.law.is_updated_lagrangian();
-        let stencils = self.gradient_stencils(mesh);
+        let stencils = self.gradient_stencils(mesh, geom);
         // cell tangents
         let tangents: Vec<M9> = (0..mesh.n_cells)
             .map(|o| {
@@ -231,7 +230,7 @@ impl SolidMomentum {
         for f in 0..ni {
             let o = mesh.owner[f] as usize;
             let n = mesh.neighbour[f] as usize;
-            let w = geom.weight[f];
+            let w = geom.weight(mesh, f);
             let l = times_vector(&geom.face_areas[f]);
             let s = alpha * self.k * geom.face_mag[f] / self.dn[f];
             // ∂force/∂G_f from the Rhie–Chow term and the carried forces
@@ -350,9 +349,14 @@ impl SolidMomentum {
     /// The nodes each row of [`Self::jacobian_blocks`] can reach, for the
     /// sparsity pattern: `add(row, column)` for every pair (repeats
     /// possible).
-    pub fn jacobian_pattern(&self, mesh: &PolyMesh, add: &mut dyn FnMut(StateNode, StateNode)) {
+    pub fn jacobian_pattern(
+        &self,
+        mesh: &PolyMesh,
+        geom: &MeshGeometry,
+        add: &mut dyn FnMut(StateNode, StateNode),
+    ) {
         let ni = mesh.n_internal_faces();
-        let stencils = self.gradient_stencils(mesh);
+        let stencils = self.gradient_stencils(mesh, geom);
         let reach = |row: StateNode, cell: usize, add: &mut dyn FnMut(StateNode, StateNode)| {
             for (node, _) in &stencils[cell] {
                 add(row, *node);

@@ -112,7 +112,6 @@ impl SolidMomentum {
             }
         }
         // per cell: T = Σ_b M_b ⊗ (c_b w_bᵀ) (vec(A G B) = (Bᵀ ⊗ A) vec G)
-        let coeff = self.gradient.owner_coefficients();
         for face in &k.faces {
             let o = face.owner as usize;
             if k.cell_slot[o] == u32::MAX {
@@ -120,7 +119,10 @@ impl SolidMomentum {
                 k.inverses.push(Matrix9::identity());
                 k.cells.push(face.owner);
             }
-            let cw = coeff[ni + face.b as usize] * face.w.transpose();
+            let cw = self
+                .gradient
+                .owner_coefficient(mesh, geom, ni + face.b as usize)
+                * face.w.transpose();
             let t = &mut k.inverses[k.cell_slot[o] as usize];
             for j in 0..3 {
                 for l in 0..3 {
@@ -148,7 +150,7 @@ impl SolidMomentum {
     /// increment Δu refreshed (updated Lagrangian), the gradient computed
     /// with the kinematic faces eliminated, and the normal derivatives
     /// n·∇u of every face set to the state's.
-    pub fn boundary_values_and_gradient_of_state(&mut self, mesh: &PolyMesh) {
+    pub fn boundary_values_and_gradient_of_state(&mut self, mesh: &PolyMesh, geom: &MeshGeometry) {
         let ni = mesh.n_internal_faces();
         let ul = self.law.is_updated_lagrangian();
         // explicit faces, and the kinematic faces' part without the gradient
@@ -191,7 +193,7 @@ impl SolidMomentum {
                 (&self.u, &self.u_b)
             };
             self.gradient
-                .vector_gradient(mesh, u, u_b, &mut self.grad_u);
+                .vector_gradient(mesh, geom, u, u_b, &mut self.grad_u);
         }
         // G = (I − T)⁻¹ G₀ for the cells with kinematic faces
         for (&cell, inv) in self.kinematic.cells.iter().zip(&self.kinematic.inverses) {
@@ -265,7 +267,7 @@ mod tests {
             let before = m.u_b.clone();
             m.update_boundary_values(mesh, geom);
             m.gradient
-                .vector_gradient(mesh, &m.u, &m.u_b, &mut m.grad_u);
+                .vector_gradient(mesh, geom, &m.u, &m.u_b, &mut m.grad_u);
             let change = m
                 .u_b
                 .iter()
@@ -321,7 +323,7 @@ mod tests {
         b.u = a.u.clone();
         fixed_point(&mut a, &mesh, &geom);
         b.prepare_state_function(&mesh, &geom);
-        b.boundary_values_and_gradient_of_state(&mesh);
+        b.boundary_values_and_gradient_of_state(&mesh, &geom);
         assert_same_state(&a, &b);
     }
 
@@ -349,7 +351,7 @@ mod tests {
         b.u = a.u.clone();
         fixed_point(&mut a, &mesh, &geom);
         b.prepare_state_function(&mesh, &geom);
-        b.boundary_values_and_gradient_of_state(&mesh);
+        b.boundary_values_and_gradient_of_state(&mesh, &geom);
         assert_same_state(&a, &b);
     }
 }

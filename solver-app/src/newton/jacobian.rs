@@ -111,7 +111,7 @@ impl AssembledJacobian {
     fn build_pattern(&mut self, bodies: &[Body], layout: &StateLayout) {
         let mut rows: Vec<Vec<u32>> = vec![Vec::new(); self.n_nodes];
         for (bi, b) in bodies.iter().enumerate().filter(|(_, b)| !b.rigid) {
-            b.momentum.jacobian_pattern(&b.mesh, &mut |r, c| {
+            b.momentum.jacobian_pattern(&b.mesh, &b.geom, &mut |r, c| {
                 if let (Some(r), Some(c)) = (global(b, layout, bi, r), global(b, layout, bi, c)) {
                     rows[r as usize].push(c);
                 }

@@ -253,7 +253,8 @@ impl ModelProblem<'_> {
         let t0 = Instant::now();
         self.scatter(x);
         for b in self.bodies.iter_mut().filter(|b| !b.rigid) {
-            b.momentum.boundary_values_and_gradient_of_state(&b.mesh);
+            b.momentum
+                .boundary_values_and_gradient_of_state(&b.mesh, &b.geom);
             b.measure_loaded_faces();
         }
         let t1 = self.times.lap(Phase::BoundaryValues, t0);

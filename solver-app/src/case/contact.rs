@@ -121,7 +121,8 @@ pub struct ContactSpec {
     /// `face_position`: where a contact face is when the gap is measured.
     pub face_position: FacePosition,
     /// Augmented Lagrangian updates of the normal pressure (`None`: the
-    /// plain penalty, default).
+    /// plain penalty). Default: on under Newton–Krylov with a deformable
+    /// slave, off otherwise (`case::default_augmentation`).
     pub augmentation: Option<Augmentation>,
 }
 

@@ -179,6 +179,13 @@ pub fn parse_case_with(
     build(&top, source, nonlinear)
 }
 
+/// Why the pair `spec` cannot share its patch `side` (its master or its
+/// slave) with the pair `o`, if it cannot. A deformable body's patch
+/// carries one contact condition, which sums those of its pairs: their
+/// tractions with explicit coupling, and with implicit coupling their
+/// grounded springs against rigid bodies (a spring to another deformable
+/// body joins two cells, and a patch's condition is either kind, not
+
 /// The augmentation of a contact whose case gives none: Newton–Krylov
 /// updates the multipliers (penetration ≤ 10⁻³ of the slave cells'
 /// height), so its results do not depend on `penalty_scale` — measured,
@@ -195,13 +202,6 @@ fn default_augmentation(
     (method == fv_nonlinear::NonlinearMethod::NewtonKrylov && !rigid_slave)
         .then(Augmentation::default)
 }
-
-/// Why the pair `spec` cannot share its patch `side` (its master or its
-/// slave) with the pair `o`, if it cannot. A deformable body's patch
-/// carries one contact condition, which sums those of its pairs: their
-/// tractions with explicit coupling, and with implicit coupling their
-/// grounded springs against rigid bodies (a spring to another deformable
-/// body joins two cells, and a patch's condition is either kind, not
 /// both). `None` as well when `side` is a rigid body's or not in `o`.
 pub(crate) fn shared_patch_conflict(
     spec: &ContactSpec,

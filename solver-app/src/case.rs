@@ -185,23 +185,6 @@ pub fn parse_case_with(
 /// tractions with explicit coupling, and with implicit coupling their
 /// grounded springs against rigid bodies (a spring to another deformable
 /// body joins two cells, and a patch's condition is either kind, not
-
-/// The augmentation of a contact whose case gives none: Newton–Krylov
-/// updates the multipliers (penetration ≤ 10⁻³ of the slave cells'
-/// height), so its results do not depend on `penalty_scale` — measured,
-/// Hertz cylinder (fine) p_max 3.831 at penalty_scale 1 against 3.828 at
-/// 100 (3.669 at 1 without; 9 Newton iterations instead of 6); sphere on
-/// block 0.12703 against 0.12718 N (0.12428 without); die drawing 657.1
-/// against 656.5 N (629.0 without), 2.6 s against 1.5 s. The segregated
-/// method keeps the thesis's plain penalty; a rigid slave has no faces
-/// for the multipliers.
-fn default_augmentation(
-    method: fv_nonlinear::NonlinearMethod,
-    rigid_slave: bool,
-) -> Option<Augmentation> {
-    (method == fv_nonlinear::NonlinearMethod::NewtonKrylov && !rigid_slave)
-        .then(Augmentation::default)
-}
 /// both). `None` as well when `side` is a rigid body's or not in `o`.
 pub(crate) fn shared_patch_conflict(
     spec: &ContactSpec,
@@ -313,7 +296,7 @@ fn build(
     if let Some(c) = &contact_entry {
         for item in tables(&c.node(), "contact")? {
             let node = item.node();
-            let mut spec = contact::contact(&node, &names)?;
+            let spec = contact::contact(&node, &names)?;
             let is_rigid =
                 |side: &(String, String)| bodies.iter().any(|b| b.name == side.0 && b.rigid);
             for (key, side) in [("master", &spec.master), ("slave", &spec.slave)] {
@@ -326,10 +309,6 @@ fn build(
                         )));
                     }
                 }
-            }
-            let augmentation_given = node.table()?.get("augmentation").is_some();
-            if !augmentation_given {
-                spec.augmentation = default_augmentation(solver.nonlinear, is_rigid(&spec.slave));
             }
             if spec.augmentation.is_some() && is_rigid(&spec.slave) {
                 // the multipliers live on the slave faces, where the

@@ -121,31 +121,6 @@ pub fn solver_report(case: &Case) -> String {
             crate::case::Predictor::Linear => "linear",
         }
     );
-    for (i, c) in case.contacts.iter().enumerate() {
-        let given = case
-            .source
-            .line_of(&format!("contact[{i}].augmentation"))
-            .is_some();
-        let _ = match (c.augmentation, given) {
-            (Some(a), _) => write!(
-                out,
-                "\ncontact[{i}]: augmented Lagrangian{} (penetration ≤ {:e} of the slave cells' height, ≤ {} updates per increment)",
-                if given { "" } else { " (the default under newton-krylov)" },
-                a.penetration,
-                a.max_updates
-            ),
-            (None, false) => write!(
-                out,
-                "\ncontact[{i}]: plain penalty (the default {})",
-                if case.solver.nonlinear == fv_nonlinear::NonlinearMethod::Segregated {
-                    "of the segregated method, as the thesis"
-                } else {
-                    "for a rigid slave"
-                }
-            ),
-            (None, true) => write!(out, "\ncontact[{i}]: plain penalty"),
-        };
-    }
     out
 }
 

@@ -121,8 +121,7 @@ pub struct ContactSpec {
     /// `face_position`: where a contact face is when the gap is measured.
     pub face_position: FacePosition,
     /// Augmented Lagrangian updates of the normal pressure (`None`: the
-    /// plain penalty). Default: on under Newton–Krylov with a deformable
-    /// slave, off otherwise (`case::default_augmentation`).
+    /// plain penalty, default).
     pub augmentation: Option<Augmentation>,
 }
 

@@ -876,8 +876,7 @@ material = { model = "linear-elastic", E = 1, nu = 0.3 }
             detection: Detection::AdvancingFront,
             slip_history: contact_force::SlipHistory::Accumulated,
             face_position: FacePosition::Interpolated,
-            // on by default under Newton–Krylov (deformable slave)
-            augmentation: Some(Augmentation::default()),
+            augmentation: None,
         }]
     );
     let c = parse(&format!(
@@ -1192,22 +1191,8 @@ fn augmentation_forms_and_the_rigid_slave_rule() {
             "{MIN}[[body]]\nname = \"plate\"\nrigid = true\nmesh = {{ generator = \"box\", min = [0, 1, 0], max = [1, 2, 0.1], cells = [1, 1, 1] }}\nmaterial = {{ model = \"linear-elastic\", E = 200.0, nu = 0.3 }}\n[[contact]]\n{contact}\n"
         )
     };
-    // default: on under Newton–Krylov with a deformable slave, off under
-    // the segregated method and for a rigid slave
     let c = parse(&two("master = \"plate/ymin\"\nslave = \"block/ymax\""));
-    assert_eq!(c.contacts[0].augmentation, Some(Augmentation::default()));
-    let seg = two("master = \"plate/ymin\"\nslave = \"block/ymax\"").replacen(
-        "[[body]]",
-        "[solver]\nnonlinear = \"segregated\"\n[[body]]",
-        1,
-    );
-    assert_eq!(parse(&seg).contacts[0].augmentation, None);
-    let rigid_slave = parse(&two("master = \"block/ymax\"\nslave = \"plate/ymin\""));
-    assert_eq!(rigid_slave.contacts[0].augmentation, None);
-    let off = parse(&two(
-        "master = \"plate/ymin\"\nslave = \"block/ymax\"\naugmentation = false",
-    ));
-    assert_eq!(off.contacts[0].augmentation, None);
+    assert_eq!(c.contacts[0].augmentation, None);
     let c = parse(&two(
         "master = \"plate/ymin\"\nslave = \"block/ymax\"\naugmentation = true",
     ));

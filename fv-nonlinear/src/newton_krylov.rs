@@ -193,6 +193,9 @@ pub struct IterationReport {
     /// the step in units of the damping D (negative: an unstable mode;
     /// NaN: the problem has no D).
     pub curvature: f64,
+    /// How far `curvature` may be off by the linear solve's residual (0
+    /// for a shifted step, whose curvature is measured by a product).
+    pub curvature_noise: f64,
 }
 
 /// Stagnation just above the floor band is left to creep on (concentric
@@ -335,6 +338,9 @@ impl NewtonKrylov {
         // residual at the start of the current run of steps without
         // progress, and the run's length
         let (mut stall_base, mut stall_steps) = (fnorm, 0);
+        // whether a Newton step of the current run without progress met
+        // a negative stiffness along itself
+        let mut unstable = false;
         let mut continuation = params.pseudo_transient.map(PseudoTransient::new);
         // Krylov iterations of the previous step (none before the first)
         // the previous solve's last step (the preconditioner it left, or
@@ -435,6 +441,13 @@ impl NewtonKrylov {
                     };
                     info.residual_evaluations += product.evaluations;
                 }
+                // what the linear solve's residual r leaves unknown of a
+                // Newton step's δᵀF: |δᵀr| ≤ ‖r‖ ‖δ‖
+                report.curvature_noise = if report.shift > 0.0 {
+                    0.0
+                } else {
+                    report.linear_residual * fnorm * norm(&self.dx) / dd
+                };
                 num / dd
             } else {
                 f64::NAN
@@ -548,21 +561,24 @@ impl NewtonKrylov {
             // the steps of the damped motion are no Newton steps to judge
             // progress by
             if fnorm < STALL_PROGRESS * stall_base || continuing {
-                (stall_base, stall_steps) = (fnorm, 0);
+                (stall_base, stall_steps, unstable) = (fnorm, 0, false);
             } else {
                 stall_steps += 1;
+                unstable |= report.curvature < -report.curvature_noise;
             }
             let target = (params.tolerance * reference).max(problem.roundoff_floor());
-            // Newton creeping far from the floor band: a limit point,
-            // whose way on is the damped motion
+            // Newton creeping within the band where stagnation does not
+            // stop the solve, having met a negative stiffness: a limit
+            // point, whose way on is the damped motion (tried before the
+            // floor band's acceptance below)
             if let Some(c) = continuation.as_mut() {
                 let trigger = c.params().stall_trigger;
-                // (a problem without a damping D has no curvature either)
                 if c.sigma() == 0.0
                     && trigger > 0
-                    && report.curvature.is_finite()
+                    && unstable
                     && stall_steps >= trigger
-                    && fnorm > params.floor_factor * target
+                    && fnorm > target
+                    && fnorm <= STALL_ABORT_BAND * params.floor_factor * target
                     && c.rescue()
                 {
                     info.rescues += 1;

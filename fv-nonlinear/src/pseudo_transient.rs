@@ -63,15 +63,23 @@ pub struct PseudoTransientParams {
     pub growth: f64,
     /// Largest σ; a failure beyond it ends the solve.
     pub max: f64,
-    /// σ below this fraction of `initial` is dropped (pure Newton) when
-    /// the stiffness along the step is not known.
+    /// σ below this fraction of `initial` is dropped (pure Newton), if it
+    /// is also small against the stiffness along the step
+    /// ([`Self::newton_fraction`]).
     pub drop_below: f64,
     /// Accepted Newton steps in a row without
-    /// [`crate::line_search::STALL_PROGRESS`], farther than the floor band
-    /// from the tolerance, after which the continuation switches on as
-    /// after a failed line search (0: only then). Concentric spheres past
-    /// buckling: Newton crept for 40 iterations at 9 × 10⁻⁴ with steps of
-    /// 10⁻³ of their length, the line search never failing.
+    /// [`crate::line_search::STALL_PROGRESS`], one of them with a negative
+    /// stiffness along itself, after which the continuation switches on
+    /// as after a failed line search (0: only then) — where Newton creeps
+    /// above the floor band but within the band where stagnation does
+    /// not stop the solve (`STALL_ABORT_BAND` × the floor band).
+    /// Concentric spheres past buckling: Newton crept for 40 iterations
+    /// at 9 × 10⁻⁴ with steps of 10⁻³ of their length, the line search
+    /// never failing. Not farther out, nor without the negative
+    /// stiffness: the curved beams' first increment on 5 × 100 cells
+    /// (μ = 0.6; stalled at 3–13 × 10⁻², negative stiffness from friction
+    /// now and then) was carried by the damped motion to an equilibrium
+    /// without contact (F_x 0.002 or 0.2 N; its cut-back finds 2.09 N).
     pub stall_trigger: usize,
     /// While σ > 0 a step is accepted when its residual norm is at most
     /// this factor of the base point's (no decrease asked for: down an
@@ -83,11 +91,15 @@ pub struct PseudoTransientParams {
     /// concentric spheres' buckling; without the bound (σ falling on as
     /// the residual fell) the shifted step turned back up the mode.
     pub negative_curvature_margin: f64,
-    /// σ is dropped (Newton) when below this fraction of a positive
-    /// δᵀ(−J)δ / δᵀDδ: the shift then changes the step by less than it.
-    /// Concentric spheres: at σ = 1.7 × 10⁻⁴, four times the stiffness
-    /// along the step (4 × 10⁻⁵), Newton took over (dropped below 10⁻³)
-    /// and crept at 3 × 10⁻³ with steps of 4 % of their length.
+    /// σ is dropped (Newton) only when also below this fraction of the
+    /// measured δᵀ(−J)δ / δᵀDδ along the step: the shift then changes the
+    /// step by less than it. Concentric spheres: at σ = 1.7 × 10⁻⁴, four
+    /// times the stiffness along the step (4 × 10⁻⁵), Newton took over
+    /// (below 10⁻³) and crept at 3 × 10⁻³ with steps of 4 % of their
+    /// length. Not this alone: the shifted step, filtered of the soft
+    /// modes, is stiff along itself (die drawing: 0.6 at σ = 0.1, the
+    /// Newton step 10⁻⁷), and Newton took over after one step and crept
+    /// to a floor 8 % off the force.
     pub newton_fraction: f64,
     /// When the continuation switches on again in the same solve, σ
     /// starts at this many times the σ it handed over to Newton at (at
@@ -102,7 +114,7 @@ impl Default for PseudoTransientParams {
             initial: 0.1,
             growth: 10.0,
             max: 1e4,
-            drop_below: 1e-3,
+            drop_below: 1e-2,
             stall_trigger: 3,
             accept_growth: 2.0,
             negative_curvature_margin: 4.0,
@@ -183,11 +195,8 @@ impl PseudoTransient {
                 .max(self.params.negative_curvature_margin * -curvature);
             return;
         }
-        let newton = if curvature > 0.0 {
-            self.sigma < self.params.newton_fraction * curvature
-        } else {
-            self.sigma < self.params.drop_below * self.params.initial
-        };
+        let newton = self.sigma < self.params.drop_below * self.params.initial
+            && !(self.sigma >= self.params.newton_fraction * curvature);
         if newton {
             self.handed_over = self.sigma;
             self.sigma = 0.0;
@@ -220,7 +229,7 @@ mod tests {
         p.accepted(1.0, 0.8, 1.0, f64::NAN);
         assert_eq!(p.sigma(), 4.0);
         p.accepted(1.0, 1e-4, 1.0, f64::NAN);
-        // 4e-4 < 1e-3 × 1: back to Newton
+        // 4e-4 < 1e-2 × 1: back to Newton
         assert_eq!(p.sigma(), 0.0);
         assert_eq!(p.rescues, 2);
         // at its largest a failure ends the solve
@@ -259,5 +268,13 @@ mod tests {
         // switched on again: 10 × the σ it handed over at
         assert!(p.rescue());
         assert!((p.sigma() - 1e-5).abs() < 1e-18);
+        // small against a stiff step, but not small: kept
+        let mut q = PseudoTransient::new(PseudoTransientParams {
+            initial: 1.0,
+            ..Default::default()
+        });
+        assert!(q.rescue());
+        q.accepted(1.0, 0.5, 1.0, 100.0);
+        assert_eq!(q.sigma(), 0.5);
     }
 }

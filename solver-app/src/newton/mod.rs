@@ -263,7 +263,7 @@ fn trace_iteration(r: &IterationReport) {
             String::new()
         },
         if r.iteration > 0 {
-            format!(" curvature {:.2e}", r.curvature)
+            format!(" curvature {:.2e} (± {:.1e})", r.curvature, r.curvature_noise)
         } else {
             String::new()
         }

@@ -71,8 +71,8 @@ pub struct PseudoTransientParams {
     /// [`crate::line_search::STALL_PROGRESS`], one of them with a negative
     /// stiffness along itself, after which the continuation switches on
     /// as after a failed line search (0: only then) — where Newton creeps
-    /// above the floor band but within the band where stagnation does
-    /// not stop the solve (`STALL_ABORT_BAND` × the floor band).
+    /// within `CONTINUATION_BAND` × the floor band of
+    /// [`crate::NewtonParams`].
     /// Concentric spheres past buckling: Newton crept for 40 iterations
     /// at 9 × 10⁻⁴ with steps of 10⁻³ of their length, the line search
     /// never failing. Not farther out, nor without the negative

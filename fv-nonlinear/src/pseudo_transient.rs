@@ -43,10 +43,10 @@
 //! only after failed line searches, then dropped at σ = 10⁻³ as the
 //! residual fell) moved the shells 0.2–0.4 mm along the mode and handed
 //! back to Newton, which went back; every cut-back down to 6 × 10⁻³ mm
-//! failed likewise. With them the increment 5.8 → 5.9 mm takes 35 Newton
-//! iterations: ten of falling σ, a dozen down the mode (measured curvature
-//! −1 … −5 × 10⁻⁵, ‖F‖ rising from 2 × 10⁻⁴ to 4 × 10⁻³), then Newton
-//! converges; the next increments take 5–7.
+//! failed likewise. With them the increment 5.8 → 5.9 mm takes 34 Newton
+//! iterations: σ falling from its start, a dozen steps down the mode
+//! (measured curvature −1 … −5 × 10⁻⁵, ‖F‖ rising from 2 × 10⁻⁴ to
+//! 4 × 10⁻³), then Newton converges; the next increments take 5–7.
 
 /// σ is at least multiplied by this after a full step.
 const FULL_STEP_REDUCTION: f64 = 0.5;

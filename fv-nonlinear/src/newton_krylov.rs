@@ -22,7 +22,7 @@ use crate::gmres::{Gmres, GmresParams, KrylovSystem};
 use crate::line_search::{next_length, sufficient, LineSearchParams, NonMonotone, STALL_PROGRESS};
 use crate::problem::{Frozen, Inadmissible, NonlinearProblem};
 use crate::pseudo_transient::{PseudoTransient, PseudoTransientParams};
-use crate::vector_ops::norm;
+use crate::vector_ops::{dot, norm};
 
 /// Parameters of a Newton–Krylov solve.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -97,8 +97,8 @@ pub struct NewtonInfo {
     /// Full steps accepted across a change of the frozen data whatever
     /// their residual ([`LineSearchParams::discontinuity_steps`]).
     pub discontinuity_steps: usize,
-    /// Failed line searches after which the pseudo-transient continuation
-    /// took over ([`PseudoTransient`]).
+    /// Failed line searches or stalled Newton runs after which the
+    /// pseudo-transient continuation took over ([`PseudoTransient`]).
     pub rescues: usize,
     /// Converged at the floor of a non-smooth residual: no step decreased
     /// ‖F‖ within [`NewtonParams::floor_factor`] × the tolerance (contact
@@ -189,6 +189,13 @@ pub struct IterationReport {
     pub discontinuity: bool,
     /// The pseudo-transient shift σ of its linear solve (0: Newton).
     pub shift: f64,
+    /// δᵀ(−J)δ / δᵀDδ of its linear solve's step δ: the stiffness along
+    /// the step in units of the damping D (negative: an unstable mode;
+    /// NaN: the problem has no D).
+    pub curvature: f64,
+    /// How far `curvature` may be off by the linear solve's residual (0
+    /// for a shifted step, whose curvature is measured by a product).
+    pub curvature_noise: f64,
 }
 
 /// Stagnation just above the floor band is left to creep on (concentric
@@ -197,6 +204,16 @@ pub struct IterationReport {
 /// failed): [`NewtonParams::stall_abort_iterations`] applies beyond this
 /// factor of the floor band.
 pub const STALL_ABORT_BAND: f64 = 10.0;
+
+/// A stalled Newton run switches the pseudo-transient continuation on
+/// within this factor of the floor band at most
+/// ([`PseudoTransientParams::stall_trigger`]). Measured stalls at limit
+/// points: 9 × 10⁻⁴ (concentric spheres, benchmark polyMesh, μ = 0, at
+/// 5.8 mm), 1.5 × 10⁻³ (μ = 0.5, at 6.8 mm; with 10 here the run stopped
+/// there); the curved beams' first increment on 5 × 100 cells stalls at
+/// 3–13 × 10⁻², where the damped motion found an equilibrium without
+/// contact and the cut-back finds the right one.
+pub const CONTINUATION_BAND: f64 = 100.0;
 
 /// Square root of the machine epsilon, the relative size of the
 /// finite-difference step.
@@ -215,6 +232,8 @@ pub struct NewtonKrylov {
     x_trial: Vec<f64>,
     /// The residual there (the probe's, and the damping's in a rescue).
     f_trial: Vec<f64>,
+    /// −J δ of the last step (its curvature under a shift).
+    jdx: Vec<f64>,
     /// Krylov iterations of the last step of the last solve.
     last_krylov: Option<usize>,
 }
@@ -275,13 +294,14 @@ impl NewtonKrylov {
             dx: vec![0.0; n],
             x_trial: vec![0.0; n],
             f_trial: vec![0.0; n],
+            jdx: vec![0.0; n],
             last_krylov: None,
         }
     }
 
-    /// Bytes of the workspace (Krylov basis and the four work vectors).
+    /// Bytes of the workspace (Krylov basis and the five work vectors).
     pub fn memory_bytes(&self) -> usize {
-        self.gmres.memory_bytes() + 8 * 4 * self.f.len()
+        self.gmres.memory_bytes() + 8 * 5 * self.f.len()
     }
 
     /// Returns the Krylov basis's pages to the system between solves
@@ -328,6 +348,9 @@ impl NewtonKrylov {
         // residual at the start of the current run of steps without
         // progress, and the run's length
         let (mut stall_base, mut stall_steps) = (fnorm, 0);
+        // whether a Newton step of the current run without progress met
+        // a negative stiffness along itself
+        let mut unstable = false;
         let mut continuation = params.pseudo_transient.map(PseudoTransient::new);
         // Krylov iterations of the previous step (none before the first)
         // the previous solve's last step (the preconditioner it left, or
@@ -405,11 +428,46 @@ impl NewtonKrylov {
                 }
                 Err(_) => {}
             }
+            // the curvature of −J along the step: from δᵀF for a Newton
+            // step (−J δ ≈ F to the forcing term), by one more product
+            // for a shifted one (δᵀF − σ δᵀDδ loses it when σ dominates)
+            report.curvature = if problem.damping(&self.dx, &mut self.f_trial) {
+                let dd = dot(&self.dx, &self.f_trial);
+                let mut num = dot(&self.dx, &self.f);
+                if report.shift > 0.0 {
+                    let mut product = NegativeJacobian {
+                        problem: &mut *problem,
+                        x: &*x,
+                        fx: &self.f,
+                        x_probe: &mut self.x_trial,
+                        f_probe: &mut self.f_trial,
+                        size,
+                        shift: 0.0,
+                        evaluations: 0,
+                    };
+                    num = match product.apply(&self.dx, &mut self.jdx) {
+                        Ok(()) => dot(&self.dx, &self.jdx),
+                        Err(_) => f64::NAN,
+                    };
+                    info.residual_evaluations += product.evaluations;
+                }
+                // what the linear solve's residual r leaves unknown of a
+                // Newton step's δᵀF: |δᵀr| ≤ ‖r‖ ‖δ‖
+                report.curvature_noise = if report.shift > 0.0 {
+                    0.0
+                } else {
+                    report.linear_residual * fnorm * norm(&self.dx) / dd
+                };
+                num / dd
+            } else {
+                f64::NAN
+            };
             // line search along dx, from the step the problem trusts
             let mut lambda = problem.step_limit(x, &self.dx).clamp(1e-3, 1.0);
             let mut accepted = false;
             let mut last_reason = None;
             let before = fnorm;
+            let continuing = continuation.is_some_and(|c| c.sigma() > 0.0);
             for backtrack in 0..=params.line_search.max_backtracks {
                 for ((t, x), d) in self.x_trial.iter_mut().zip(x.iter()).zip(&self.dx) {
                     *t = x + lambda * d;
@@ -423,6 +481,20 @@ impl NewtonKrylov {
                         f64::NAN
                     }
                 };
+                // a step of the damped motion: no decrease asked for
+                if continuing {
+                    let growth = continuation.map_or(1.0, |c| c.params().accept_growth);
+                    if trial.is_finite() && trial <= growth * before {
+                        accepted = true;
+                        fnorm = trial;
+                        break;
+                    }
+                    if backtrack < params.line_search.max_backtracks {
+                        info.backtracks += 1;
+                        lambda *= params.line_search.max_factor;
+                    }
+                    continue;
+                }
                 // across a change of the frozen data, unless the last such
                 // step was taken from a residual no larger (a cycle through
                 // the same change: concentric spheres after buckling ran
@@ -484,7 +556,7 @@ impl NewtonKrylov {
             }
             problem.accept();
             if let Some(c) = continuation.as_mut() {
-                c.accepted(before, fnorm, lambda);
+                c.accepted(before, fnorm, lambda, report.curvature);
             }
             x.copy_from_slice(&self.x_trial);
             std::mem::swap(&mut self.f, &mut self.f_trial);
@@ -496,12 +568,34 @@ impl NewtonKrylov {
             report.step_length = lambda;
             report.step_norm = lambda * norm(&self.dx);
             on_iteration(&report);
-            if fnorm < STALL_PROGRESS * stall_base {
-                (stall_base, stall_steps) = (fnorm, 0);
+            // the steps of the damped motion are no Newton steps to judge
+            // progress by
+            if fnorm < STALL_PROGRESS * stall_base || continuing {
+                (stall_base, stall_steps, unstable) = (fnorm, 0, false);
             } else {
                 stall_steps += 1;
+                unstable |= report.curvature < -report.curvature_noise;
             }
             let target = (params.tolerance * reference).max(problem.roundoff_floor());
+            // Newton creeping within CONTINUATION_BAND × the floor band,
+            // having met a negative stiffness: a limit point, whose way
+            // on is the damped motion (tried before the floor band's
+            // acceptance and the stagnation's stop below)
+            if let Some(c) = continuation.as_mut() {
+                let trigger = c.params().stall_trigger;
+                if c.sigma() == 0.0
+                    && trigger > 0
+                    && unstable
+                    && stall_steps >= trigger
+                    && fnorm > target
+                    && fnorm <= CONTINUATION_BAND * params.floor_factor * target
+                    && c.rescue()
+                {
+                    info.rescues += 1;
+                    (stall_base, stall_steps) = (fnorm, 0);
+                    continue;
+                }
+            }
             if params.floor_stall_iterations > 0
                 && stall_steps >= params.floor_stall_iterations
                 && fnorm > target

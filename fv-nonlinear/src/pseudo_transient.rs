@@ -1,6 +1,7 @@
 //! Pseudo-transient continuation (Kelley & Keyes, SIAM J. Numer. Anal.
 //! 35, 1998; Coffey, Kelley & Keyes 2003 for its use with Newton–Krylov):
-//! when Newton's step finds no decrease of ‖F‖, the next steps solve
+//! when Newton's step finds no decrease of ‖F‖, or Newton's accepted
+//! steps stop making progress, the next steps solve
 //!
 //! (−J + σ D) δ = F
 //!
@@ -16,9 +17,36 @@
 //! step). The converged
 //! state is F = 0 whatever the path: nothing of the damping remains in it.
 //!
-//! Where it is needed: a buckled shell pressed on a rigid plate (concentric
-//! spheres after 8.3 mm) has a soft mode that the Newton direction follows
-//! into the plate, and the line search found no decrease from 3e-5.
+//! While σ > 0 a step need not decrease ‖F‖ ([`PseudoTransientParams::accept_growth`]):
+//! it is a step of a motion, not of a minimisation of ‖F‖.
+//!
+//! **Limit points.** Past a limit point of the equilibrium path (a shell
+//! that buckles under a prescribed displacement) there is no equilibrium
+//! near the last one: ‖F‖ has a local minimum there, where J is singular,
+//! and Newton creeps towards it with steps cut to 10⁻³ of their length.
+//! The way to the next equilibrium is the damped motion down the unstable
+//! mode, along which the stiffness is *negative* and ‖F‖ first grows.
+//! Two measures keep the continuation on that way:
+//!
+//! - σ stays above [`PseudoTransientParams::negative_curvature_margin`] ×
+//!   the negative stiffness measured along the step, δᵀ(−J)δ / δᵀDδ
+//!   (`curvature` of [`PseudoTransient::accepted`]): the shifted
+//!   operator stays positive along the mode, and the step goes down it
+//!   rather than, as Newton's, back up towards the limit point;
+//! - σ is dropped for Newton only when it is small against a *positive*
+//!   measured stiffness ([`PseudoTransientParams::newton_fraction`]), not
+//!   merely small (near the limit point the stiffness is 10⁻⁵ of D).
+//!
+//! Measured on the concentric spheres (benchmark polyMesh), whose inner
+//! sphere buckles at 5.8 mm: without them Newton crept at ‖F‖ = 9 × 10⁻⁴
+//! with steps of 10⁻³–10⁻⁵ of their length, the continuation (switched on
+//! only after failed line searches, then dropped at σ = 10⁻³ as the
+//! residual fell) moved the shells 0.2–0.4 mm along the mode and handed
+//! back to Newton, which went back; every cut-back down to 6 × 10⁻³ mm
+//! failed likewise. With them the increment 5.8 → 5.9 mm takes 34 Newton
+//! iterations: σ falling from its start, a dozen steps down the mode
+//! (measured curvature −1 … −5 × 10⁻⁵, ‖F‖ rising from 2 × 10⁻⁴ to
+//! 4 × 10⁻³), then Newton converges; the next increments take 5–7.
 
 /// σ is at least multiplied by this after a full step.
 const FULL_STEP_REDUCTION: f64 = 0.5;
@@ -26,23 +54,72 @@ const FULL_STEP_REDUCTION: f64 = 0.5;
 /// Parameters of the continuation.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PseudoTransientParams {
-    /// σ when the line search first fails.
+    /// σ when the continuation first switches on. Concentric spheres
+    /// (coarse, generated mesh), the most Newton iterations in an
+    /// increment: 42 from 1, 39 from 0.1, 34 from 0.01 (benchmark
+    /// polyMesh: 35, 33, 33); the first steps only halve σ.
     pub initial: f64,
     /// Factor on σ at every further failure.
     pub growth: f64,
     /// Largest σ; a failure beyond it ends the solve.
     pub max: f64,
-    /// σ below this fraction of `initial` is dropped (pure Newton).
+    /// σ below this fraction of `initial` is dropped (pure Newton), if it
+    /// is also small against the stiffness along the step
+    /// ([`Self::newton_fraction`]).
     pub drop_below: f64,
+    /// Accepted Newton steps in a row without
+    /// [`crate::line_search::STALL_PROGRESS`], one of them with a negative
+    /// stiffness along itself, after which the continuation switches on
+    /// as after a failed line search (0: only then) — where Newton creeps
+    /// within `CONTINUATION_BAND` × the floor band of
+    /// [`crate::NewtonParams`].
+    /// Concentric spheres past buckling: Newton crept for 40 iterations
+    /// at 9 × 10⁻⁴ with steps of 10⁻³ of their length, the line search
+    /// never failing. Not farther out, nor without the negative
+    /// stiffness: the curved beams' first increment on 5 × 100 cells
+    /// (μ = 0.6; stalled at 3–13 × 10⁻², negative stiffness from friction
+    /// now and then) was carried by the damped motion to an equilibrium
+    /// without contact (F_x 0.002 or 0.2 N; its cut-back finds 2.09 N).
+    pub stall_trigger: usize,
+    /// While σ > 0 a step is accepted when its residual norm is at most
+    /// this factor of the base point's (no decrease asked for: down an
+    /// unstable mode ‖F‖ grows, 2 × 10⁻⁴ → 4 × 10⁻³ over a dozen steps on
+    /// the concentric spheres); a larger one is halved.
+    pub accept_growth: f64,
+    /// σ is kept at least this many times −δᵀ(−J)δ / δᵀDδ when that is
+    /// negative. 2 and 4 took the same 35 Newton iterations through the
+    /// concentric spheres' buckling; without the bound (σ falling on as
+    /// the residual fell) the shifted step turned back up the mode.
+    pub negative_curvature_margin: f64,
+    /// σ is dropped (Newton) only when also below this fraction of the
+    /// measured δᵀ(−J)δ / δᵀDδ along the step: the shift then changes the
+    /// step by less than it. Concentric spheres: at σ = 1.7 × 10⁻⁴, four
+    /// times the stiffness along the step (4 × 10⁻⁵), Newton took over
+    /// (below 10⁻³) and crept at 3 × 10⁻³ with steps of 4 % of their
+    /// length. Not this alone: the shifted step, filtered of the soft
+    /// modes, is stiff along itself (die drawing: 0.6 at σ = 0.1, the
+    /// Newton step 10⁻⁷), and Newton took over after one step and crept
+    /// to a floor 8 % off the force.
+    pub newton_fraction: f64,
+    /// When the continuation switches on again in the same solve, σ
+    /// starts at this many times the σ it handed over to Newton at (at
+    /// most `initial`) rather than at `initial`: the halvings from
+    /// `initial` are spent once.
+    pub reentry_factor: f64,
 }
 
 impl Default for PseudoTransientParams {
     fn default() -> Self {
         PseudoTransientParams {
-            initial: 1.0,
+            initial: 0.1,
             growth: 10.0,
             max: 1e4,
-            drop_below: 1e-3,
+            drop_below: 1e-2,
+            stall_trigger: 3,
+            accept_growth: 2.0,
+            negative_curvature_margin: 4.0,
+            newton_fraction: 0.1,
+            reentry_factor: 10.0,
         }
     }
 }
@@ -52,6 +129,8 @@ impl Default for PseudoTransientParams {
 pub struct PseudoTransient {
     params: PseudoTransientParams,
     sigma: f64,
+    /// σ when the continuation last handed over to Newton (0: never).
+    handed_over: f64,
     /// Line-search failures rescued so far.
     pub rescues: usize,
 }
@@ -62,8 +141,14 @@ impl PseudoTransient {
         PseudoTransient {
             params,
             sigma: 0.0,
+            handed_over: 0.0,
             rescues: 0,
         }
+    }
+
+    /// The parameters.
+    pub fn params(&self) -> &PseudoTransientParams {
+        &self.params
     }
 
     /// The current shift (0: Newton).
@@ -71,13 +156,16 @@ impl PseudoTransient {
         self.sigma
     }
 
-    /// After a failed line search: switches the continuation on or
-    /// strengthens it; false when it is already at its largest.
+    /// After a failed line search or a stalled Newton: switches the
+    /// continuation on or strengthens it; false when it is already at its
+    /// largest.
     pub fn rescue(&mut self) -> bool {
-        let next = if self.sigma == 0.0 {
-            self.params.initial
-        } else {
+        let next = if self.sigma > 0.0 {
             self.sigma * self.params.growth
+        } else if self.handed_over > 0.0 {
+            (self.handed_over * self.params.reentry_factor).min(self.params.initial)
+        } else {
+            self.params.initial
         };
         if !(next <= self.params.max) {
             return false;
@@ -88,8 +176,10 @@ impl PseudoTransient {
     }
 
     /// After an accepted step of length `lambda` from residual norm
-    /// `before` to `after` (SER; at least halved after a full step).
-    pub fn accepted(&mut self, before: f64, after: f64, lambda: f64) {
+    /// `before` to `after` (SER; at least halved after a full step), whose
+    /// linear solve measured `curvature` = δᵀ(−J)δ / δᵀDδ along the step
+    /// (NaN: not measured).
+    pub fn accepted(&mut self, before: f64, after: f64, lambda: f64, curvature: f64) {
         if self.sigma == 0.0 || !(before > 0.0) {
             return;
         }
@@ -98,7 +188,17 @@ impl PseudoTransient {
             ratio = ratio.min(FULL_STEP_REDUCTION);
         }
         self.sigma = (self.sigma * ratio).min(self.params.max);
-        if self.sigma < self.params.drop_below * self.params.initial {
+        if curvature < 0.0 {
+            // down an unstable mode: never Newton
+            self.sigma = self
+                .sigma
+                .max(self.params.negative_curvature_margin * -curvature);
+            return;
+        }
+        let newton = self.sigma < self.params.drop_below * self.params.initial
+            && !(self.sigma >= self.params.newton_fraction * curvature);
+        if newton {
+            self.handed_over = self.sigma;
             self.sigma = 0.0;
         }
     }
@@ -110,31 +210,71 @@ mod tests {
 
     #[test]
     fn switched_evolution_relaxation() {
-        let mut p = PseudoTransient::new(PseudoTransientParams::default());
+        let mut p = PseudoTransient::new(PseudoTransientParams {
+            initial: 1.0,
+            ..Default::default()
+        });
         assert_eq!(p.sigma(), 0.0);
         // nothing to relax while off
-        p.accepted(1.0, 0.1, 1.0);
+        p.accepted(1.0, 0.1, 1.0, f64::NAN);
         assert_eq!(p.sigma(), 0.0);
         assert!(p.rescue());
         assert_eq!(p.sigma(), 1.0);
         assert!(p.rescue());
         assert_eq!(p.sigma(), 10.0);
         // σ follows the residual after a shortened step
-        p.accepted(1.0, 0.8, 0.5);
+        p.accepted(1.0, 0.8, 0.5, f64::NAN);
         assert_eq!(p.sigma(), 8.0);
         // and at least halves after a full one
-        p.accepted(1.0, 0.8, 1.0);
+        p.accepted(1.0, 0.8, 1.0, f64::NAN);
         assert_eq!(p.sigma(), 4.0);
-        p.accepted(1.0, 1e-4, 1.0);
-        // 4e-4 < 1e-3 × 1: back to Newton
+        p.accepted(1.0, 1e-4, 1.0, f64::NAN);
+        // 4e-4 < 1e-2 × 1: back to Newton
         assert_eq!(p.sigma(), 0.0);
         assert_eq!(p.rescues, 2);
         // at its largest a failure ends the solve
         let mut q = PseudoTransient::new(PseudoTransientParams {
+            initial: 1.0,
             max: 10.0,
             ..Default::default()
         });
         assert!(q.rescue() && q.rescue());
         assert!(!q.rescue());
+    }
+
+    #[test]
+    fn measured_stiffness_keeps_the_shift_on_an_unstable_mode() {
+        let mut p = PseudoTransient::new(PseudoTransientParams {
+            initial: 1.0,
+            ..Default::default()
+        });
+        assert!(p.rescue());
+        // full steps halve σ, but not below 4 × the negative stiffness
+        p.accepted(1.0, 1.5, 1.0, -0.1);
+        assert_eq!(p.sigma(), 0.5);
+        p.accepted(1.0, 1.5, 1.0, -0.2);
+        assert_eq!(p.sigma(), 0.8);
+        // far below drop_below, yet the stiffness along the step is negative
+        for _ in 0..20 {
+            p.accepted(1.0, 0.5, 1.0, -1e-6);
+        }
+        assert_eq!(p.sigma(), 4e-6);
+        // a positive stiffness of 1e-5: σ = 2e-6 is not small against it
+        p.accepted(1.0, 1.0, 1.0, 1e-5);
+        assert_eq!(p.sigma(), 2e-6);
+        // 1e-6 < 0.1 × 1e-4: Newton
+        p.accepted(1.0, 1.0, 1.0, 1e-4);
+        assert_eq!(p.sigma(), 0.0);
+        // switched on again: 10 × the σ it handed over at
+        assert!(p.rescue());
+        assert!((p.sigma() - 1e-5).abs() < 1e-18);
+        // small against a stiff step, but not small: kept
+        let mut q = PseudoTransient::new(PseudoTransientParams {
+            initial: 1.0,
+            ..Default::default()
+        });
+        assert!(q.rescue());
+        q.accepted(1.0, 0.5, 1.0, 100.0);
+        assert_eq!(q.sigma(), 0.5);
     }
 }

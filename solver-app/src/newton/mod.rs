@@ -264,7 +264,7 @@ impl NewtonKrylovSolver {
 /// `FVC_TRACE`: one line per Newton iteration.
 fn trace_iteration(r: &IterationReport) {
     eprintln!(
-        "    newton {}: residual {:.3e} eta {:.2e} krylov {} (linear residual {:.2e}) step {:.3e} |dx| {:.3e}{}{}",
+        "    newton {}: residual {:.3e} eta {:.2e} krylov {} (linear residual {:.2e}) step {:.3e} |dx| {:.3e}{}{}{}",
         r.iteration,
         r.residual,
         r.forcing,
@@ -275,6 +275,11 @@ fn trace_iteration(r: &IterationReport) {
         if r.discontinuity { " discontinuity" } else { "" },
         if r.shift > 0.0 {
             format!(" shift {:.1e}", r.shift)
+        } else {
+            String::new()
+        },
+        if r.iteration > 0 {
+            format!(" curvature {:.2e} (± {:.1e})", r.curvature, r.curvature_noise)
         } else {
             String::new()
         }

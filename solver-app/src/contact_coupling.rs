@@ -1051,6 +1051,11 @@ impl ContactSet {
         }
     }
 
+    /// Whether any contact is coupled explicitly.
+    pub fn has_explicit(&self) -> bool {
+        self.interfaces.iter().any(|c| !c.implicit)
+    }
+
     /// The explicitly coupled contacts (their indices in the case).
     pub fn explicit_contacts(&self) -> Vec<usize> {
         (0..self.interfaces.len())

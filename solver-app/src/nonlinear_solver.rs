@@ -34,6 +34,11 @@ pub trait NonlinearSolver {
     /// progress (to let a cut-back try) may iterate on instead.
     fn set_final_attempt(&mut self, _last: bool) {}
 
+    /// Whether a failed attempt with explicitly coupled contacts would be
+    /// redone with them coupled implicitly (thesis §4.5), so that a method
+    /// may give up early on an explicit coupling that stalls.
+    fn set_coupling_switch(&mut self, _available: bool) {}
+
     /// Solves one increment; on entry the bodies hold the converged state
     /// of the previous one and the conditions of this one, on exit the
     /// fields are those of the final iterate.
@@ -104,6 +109,10 @@ impl NonlinearSolver for SegregatedSolver {
 
     fn set_divergence_retries(&mut self, retries: u32) {
         SegregatedSolver::set_divergence_retries(self, retries);
+    }
+
+    fn set_coupling_switch(&mut self, available: bool) {
+        SegregatedSolver::set_coupling_switch(self, available);
     }
 
     fn solve_increment(

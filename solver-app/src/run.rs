@@ -329,6 +329,11 @@ fn run_case_noting(
             solver.set_step(&path, t0, t1);
             solver.set_divergence_retries(diverged);
             solver.set_final_attempt(opts.no_cutbacks || cuts >= MAX_CUTBACKS);
+            let switch_available = may_switch
+                && !switched_coupling
+                && !opts.no_cutbacks
+                && !switchable_explicit_contacts(case, &contacts).is_empty();
+            solver.set_coupling_switch(switch_available);
             let attempt = solver.solve_increment(&mut bodies, &mut contacts, &mut |outer, res| {
                 if trace_outer {
                     eprintln!("  outer {outer}: residual {res:.3e}");
@@ -359,10 +364,18 @@ fn run_case_noting(
                         total.outer_iterations += info.outer_iterations;
                         total.linear_iterations += info.linear_iterations;
                         total.residual_evaluations += info.residual_evaluations;
-                        format!(
-                            "no convergence in {} outer iterations",
-                            info.outer_iterations
-                        )
+                        if info.coupling_stalled {
+                            format!(
+                                "{} after {} outer iterations",
+                                info.shortfall(case.solver.tolerance),
+                                info.outer_iterations
+                            )
+                        } else {
+                            format!(
+                                "no convergence in {} outer iterations",
+                                info.outer_iterations
+                            )
+                        }
                     }
                     Err(e) => e.to_string(),
                 };

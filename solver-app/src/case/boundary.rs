@@ -1,5 +1,6 @@
 //! `[body.boundary.<patch>]`: one boundary condition per patch.
 
+use super::keys;
 use super::reader::{list, Node, Res};
 use super::values::{rotation, scalar_value, vector_value, Rotation, ScalarValue, VectorValue};
 
@@ -49,19 +50,6 @@ pub enum BoundarySpec {
     },
 }
 
-/// The boundary condition types, as written in `type`.
-pub const BOUNDARY_TYPES: [&str; 9] = [
-    "displacement",
-    "normal-displacement",
-    "traction",
-    "pressure",
-    "force",
-    "symmetry",
-    "empty",
-    "wedge",
-    "rigid-motion",
-];
-
 #[derive(Clone, Copy)]
 enum Kind {
     Vector(fn(VectorValue) -> BoundarySpec),
@@ -69,6 +57,42 @@ enum Kind {
     Plain(fn() -> BoundarySpec),
     Rigid,
 }
+
+/// The boundary condition types by name, with what each reads.
+const KINDS: [(&str, Kind); 9] = [
+    (
+        "displacement",
+        Kind::Vector(|value| BoundarySpec::Displacement { value }),
+    ),
+    (
+        "normal-displacement",
+        Kind::Scalar(|value| BoundarySpec::NormalDisplacement { value }),
+    ),
+    (
+        "traction",
+        Kind::Vector(|value| BoundarySpec::Traction { value }),
+    ),
+    (
+        "pressure",
+        Kind::Scalar(|value| BoundarySpec::Pressure { value }),
+    ),
+    ("force", Kind::Vector(|value| BoundarySpec::Force { value })),
+    ("symmetry", Kind::Plain(|| BoundarySpec::Symmetry)),
+    ("empty", Kind::Plain(|| BoundarySpec::Empty)),
+    ("wedge", Kind::Plain(|| BoundarySpec::Wedge)),
+    ("rigid-motion", Kind::Rigid),
+];
+
+/// The boundary condition types, as written in `type`.
+pub const BOUNDARY_TYPES: [&str; 9] = {
+    let mut names = [""; 9];
+    let mut i = 0;
+    while i < names.len() {
+        names[i] = KINDS[i].0;
+        i += 1;
+    }
+    names
+};
 
 pub(crate) fn boundary_condition(node: &Node<'_>) -> Res<BoundarySpec> {
     let t = node.table().map_err(|_| {
@@ -80,36 +104,11 @@ pub(crate) fn boundary_condition(node: &Node<'_>) -> Res<BoundarySpec> {
     })?;
     let type_node = t.req("type")?;
     let tn = type_node.node();
-    let kind = tn.choice(
-        "boundary type",
-        &[
-            (
-                "displacement",
-                Kind::Vector(|value| BoundarySpec::Displacement { value }),
-            ),
-            (
-                "normal-displacement",
-                Kind::Scalar(|value| BoundarySpec::NormalDisplacement { value }),
-            ),
-            (
-                "traction",
-                Kind::Vector(|value| BoundarySpec::Traction { value }),
-            ),
-            (
-                "pressure",
-                Kind::Scalar(|value| BoundarySpec::Pressure { value }),
-            ),
-            ("force", Kind::Vector(|value| BoundarySpec::Force { value })),
-            ("symmetry", Kind::Plain(|| BoundarySpec::Symmetry)),
-            ("empty", Kind::Plain(|| BoundarySpec::Empty)),
-            ("wedge", Kind::Plain(|| BoundarySpec::Wedge)),
-            ("rigid-motion", Kind::Rigid),
-        ],
-    )?;
+    let kind = tn.choice("boundary type", &KINDS)?;
     let type_name = tn.str()?;
     match kind {
         Kind::Vector(make) => {
-            t.deny_unknown(&["type", "value"])?;
+            t.deny_unknown(keys::BOUNDARY_VALUED)?;
             let v = t.req("value")?;
             let v = v.node();
             Ok(make(vector_value(&v).map_err(|mut e| {
@@ -120,7 +119,7 @@ pub(crate) fn boundary_condition(node: &Node<'_>) -> Res<BoundarySpec> {
             })?))
         }
         Kind::Scalar(make) => {
-            t.deny_unknown(&["type", "value"])?;
+            t.deny_unknown(keys::BOUNDARY_VALUED)?;
             let v = t.req("value")?;
             let v = v.node();
             Ok(make(scalar_value(&v).map_err(|mut e| {
@@ -134,7 +133,7 @@ pub(crate) fn boundary_condition(node: &Node<'_>) -> Res<BoundarySpec> {
             if let Some(v) = t.get("value") {
                 return Err(v.node().err(format!("type \"{type_name}\" takes no value")));
             }
-            t.deny_unknown(&["type"])?;
+            t.deny_unknown(keys::BOUNDARY_PLAIN)?;
             Ok(make())
         }
         Kind::Rigid => {
@@ -143,7 +142,7 @@ pub(crate) fn boundary_condition(node: &Node<'_>) -> Res<BoundarySpec> {
                     "type \"rigid-motion\" takes `translation` and/or `rotation`, not `value`",
                 ));
             }
-            t.deny_unknown(&["type", "translation", "rotation"])?;
+            t.deny_unknown(keys::BOUNDARY_RIGID_MOTION)?;
             let translation = t.maybe("translation", vector_value)?;
             let rotation = t.maybe("rotation", rotation)?;
             if translation.is_none() && rotation.is_none() {

@@ -1,5 +1,6 @@
 //! `[[contact]]`: one master/slave patch pair each.
 
+use super::keys;
 use super::reader::{list, Node, Res};
 use super::values::{scalar_value, ScalarValue};
 use contact_force::SlipHistory;
@@ -70,13 +71,49 @@ impl Default for Augmentation {
     }
 }
 
+/// `contact.algorithm` by name.
+pub(crate) const ALGORITHMS: [(&str, ContactAlgorithm); 4] = [
+    ("segment-to-segment", ContactAlgorithm::SegmentToSegment),
+    ("pointwise", ContactAlgorithm::Pointwise),
+    ("pointwise-nagata", ContactAlgorithm::PointwiseNagata),
+    (
+        "segment-to-segment-nagata",
+        ContactAlgorithm::SegmentToSegmentNagata,
+    ),
+];
+
+/// `contact.coupling` by name.
+pub(crate) const COUPLINGS: [(&str, Coupling); 2] = [
+    ("explicit", Coupling::Explicit),
+    ("implicit", Coupling::Implicit),
+];
+
+/// `contact.detection` by name.
+pub(crate) const DETECTIONS: [(&str, Detection); 3] = [
+    ("advancing-front", Detection::AdvancingFront),
+    ("bvh", Detection::Bvh),
+    ("brute-force", Detection::BruteForce),
+];
+
+/// `contact.slip_history` by name.
+pub(crate) const SLIP_HISTORIES: [(&str, SlipHistory); 2] = [
+    ("incremental", SlipHistory::Incremental),
+    ("accumulated", SlipHistory::Accumulated),
+];
+
+/// `contact.face_position` by name.
+pub(crate) const FACE_POSITIONS: [(&str, FacePosition); 2] = [
+    ("boundary-value", FacePosition::BoundaryValue),
+    ("interpolated", FacePosition::Interpolated),
+];
+
 /// `augmentation = true | false | { penetration = …, max_updates = … }`.
 fn augmentation(n: &Node<'_>) -> Res<Option<Augmentation>> {
     if let Ok(on) = n.bool() {
         return Ok(on.then(Augmentation::default));
     }
     let t = n.table()?;
-    t.deny_unknown(&["penetration", "max_updates"])?;
+    t.deny_unknown(keys::AUGMENTATION)?;
     let d = Augmentation::default();
     Ok(Some(Augmentation {
         penetration: t.opt("penetration", d.penetration, |n| {
@@ -162,20 +199,7 @@ fn body_patch(n: &Node<'_>, bodies: &[&str]) -> Res<(String, String)> {
 
 pub(crate) fn contact(node: &Node<'_>, bodies: &[&str]) -> Res<ContactSpec> {
     let t = node.table()?;
-    t.deny_unknown(&[
-        "master",
-        "slave",
-        "algorithm",
-        "coupling",
-        "penalty_scale",
-        "friction",
-        "tangential_penalty_scale",
-        "relaxation",
-        "detection",
-        "slip_history",
-        "face_position",
-        "augmentation",
-    ])?;
+    t.deny_unknown(keys::CONTACT)?;
     let master = t.need("master", |n| body_patch(n, bodies))?;
     let slave_node = t.req("slave")?;
     let slave = body_patch(&slave_node.node(), bodies)?;
@@ -190,7 +214,7 @@ pub(crate) fn contact(node: &Node<'_>, bodies: &[&str]) -> Res<ContactSpec> {
         Some(r) => {
             let r = r.node();
             let rt = r.table()?;
-            rt.deny_unknown(&["normal", "tangential"])?;
+            rt.deny_unknown(keys::CONTACT_RELAXATION)?;
             (
                 rt.opt("normal", 0.1, relaxation)?,
                 rt.opt("tangential", 0.1, relaxation)?,
@@ -201,27 +225,10 @@ pub(crate) fn contact(node: &Node<'_>, bodies: &[&str]) -> Res<ContactSpec> {
         master,
         slave,
         algorithm: t.opt("algorithm", ContactAlgorithm::SegmentToSegment, |n| {
-            n.choice(
-                "contact algorithm",
-                &[
-                    ("segment-to-segment", ContactAlgorithm::SegmentToSegment),
-                    ("pointwise", ContactAlgorithm::Pointwise),
-                    ("pointwise-nagata", ContactAlgorithm::PointwiseNagata),
-                    (
-                        "segment-to-segment-nagata",
-                        ContactAlgorithm::SegmentToSegmentNagata,
-                    ),
-                ],
-            )
+            n.choice("contact algorithm", &ALGORITHMS)
         })?,
         coupling: t.opt("coupling", Coupling::Explicit, |n| {
-            n.choice(
-                "coupling",
-                &[
-                    ("explicit", Coupling::Explicit),
-                    ("implicit", Coupling::Implicit),
-                ],
-            )
+            n.choice("coupling", &COUPLINGS)
         })?,
         penalty_scale: t.opt("penalty_scale", 1.0, |n| n.positive())?,
         friction: t.opt("friction", ScalarValue::Constant(0.0), friction)?,
@@ -229,32 +236,13 @@ pub(crate) fn contact(node: &Node<'_>, bodies: &[&str]) -> Res<ContactSpec> {
         relaxation_normal,
         relaxation_tangential,
         detection: t.opt("detection", Detection::AdvancingFront, |n| {
-            n.choice(
-                "detection",
-                &[
-                    ("advancing-front", Detection::AdvancingFront),
-                    ("bvh", Detection::Bvh),
-                    ("brute-force", Detection::BruteForce),
-                ],
-            )
+            n.choice("detection", &DETECTIONS)
         })?,
         slip_history: t.opt("slip_history", SlipHistory::Accumulated, |n| {
-            n.choice(
-                "slip_history",
-                &[
-                    ("incremental", SlipHistory::Incremental),
-                    ("accumulated", SlipHistory::Accumulated),
-                ],
-            )
+            n.choice("slip_history", &SLIP_HISTORIES)
         })?,
         face_position: t.opt("face_position", FacePosition::Interpolated, |n| {
-            n.choice(
-                "face_position",
-                &[
-                    ("boundary-value", FacePosition::BoundaryValue),
-                    ("interpolated", FacePosition::Interpolated),
-                ],
-            )
+            n.choice("face_position", &FACE_POSITIONS)
         })?,
         augmentation: t.opt("augmentation", None, augmentation)?,
     })

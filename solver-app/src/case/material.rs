@@ -1,5 +1,6 @@
 //! `material = { ... }`: constitutive model and its parameters.
 
+use super::keys;
 use super::reader::{fmt_num, Node, Res};
 
 /// `material.model`.
@@ -40,30 +41,17 @@ pub struct MaterialSpec {
     pub hardening_table: Option<Vec<(f64, f64)>>,
 }
 
-const KEYS: [&str; 8] = [
-    "model",
-    "E",
-    "nu",
-    "rho",
-    "plane_stress",
-    "yield",
-    "hardening",
-    "hardening_table",
+/// `material.model` by name.
+pub(crate) const MODELS: [(&str, MaterialModel); 3] = [
+    ("linear-elastic", MaterialModel::LinearElastic),
+    ("neo-hookean", MaterialModel::NeoHookean),
+    ("neo-hookean-plastic", MaterialModel::NeoHookeanPlastic),
 ];
 
 pub(crate) fn material(node: &Node<'_>) -> Res<MaterialSpec> {
     let t = node.table()?;
-    t.deny_unknown(&KEYS)?;
-    let model = t.need("model", |n| {
-        n.choice(
-            "material model",
-            &[
-                ("linear-elastic", MaterialModel::LinearElastic),
-                ("neo-hookean", MaterialModel::NeoHookean),
-                ("neo-hookean-plastic", MaterialModel::NeoHookeanPlastic),
-            ],
-        )
-    })?;
+    t.deny_unknown(keys::MATERIAL)?;
+    let model = t.need("model", |n| n.choice("material model", &MODELS))?;
     let e = t.need("E", |n| n.positive())?;
     let nu = t.need("nu", |n| {
         n.f64_if(|x| x > -1.0 && x < 0.5, "satisfy -1 < nu < 0.5")

@@ -2,6 +2,9 @@
 
 use std::path::{Path, PathBuf};
 
+use fv_mesh::spherical_shell::ShellPart;
+
+use super::keys;
 use super::reader::{fmt_num, list, Node, Res, Table};
 
 /// Where a body's mesh comes from.
@@ -97,6 +100,14 @@ pub enum MeshSpec {
 /// The built-in generators.
 pub const GENERATORS: [&str; 3] = ["box", "annulus", "spherical-shell"];
 
+/// `part` of the spherical-shell generator by name.
+pub(crate) const SHELL_PARTS: [(&str, ShellPart); 4] = [
+    ("sphere", ShellPart::Sphere),
+    ("hemisphere", ShellPart::Hemisphere),
+    ("octant", ShellPart::Octant),
+    ("wedge", ShellPart::Wedge),
+];
+
 /// Largest cell count a generator accepts (as in `fv_mesh::generators`).
 const MAX_GENERATED_CELLS: u128 = 50_000_000;
 
@@ -126,11 +137,14 @@ fn cells(t: &Table<'_>) -> Res<[usize; 3]> {
 
 pub(crate) fn mesh(node: &Node<'_>, case_dir: &Path) -> Res<MeshSpec> {
     let t = node.table()?;
-    let forms = ["file", "polymesh", "generator"];
-    let given: Vec<&str> = forms.iter().copied().filter(|k| t.has(k)).collect();
+    let given: Vec<&str> = keys::MESH_SOURCES
+        .iter()
+        .copied()
+        .filter(|k| t.has(k))
+        .collect();
     match given.as_slice() {
         ["file"] => {
-            t.deny_unknown(&["file", "zone", "scale", "translate"])?;
+            t.deny_unknown(keys::MESH_FILE)?;
             Ok(MeshSpec::Gmsh {
                 file: case_dir.join(t.need("file", |n| n.nonempty_str().map(PathBuf::from))?),
                 zone: t.maybe("zone", |n| n.nonempty_str().map(str::to_owned))?,
@@ -139,7 +153,7 @@ pub(crate) fn mesh(node: &Node<'_>, case_dir: &Path) -> Res<MeshSpec> {
             })
         }
         ["polymesh"] => {
-            t.deny_unknown(&["polymesh", "zone", "scale", "translate"])?;
+            t.deny_unknown(keys::MESH_POLYMESH)?;
             Ok(MeshSpec::PolyMesh {
                 dir: case_dir.join(t.need("polymesh", |n| n.nonempty_str().map(PathBuf::from))?),
                 zone: t.maybe("zone", |n| n.nonempty_str().map(str::to_owned))?,
@@ -149,14 +163,7 @@ pub(crate) fn mesh(node: &Node<'_>, case_dir: &Path) -> Res<MeshSpec> {
         }
         ["generator"] => {
             let g = t.need("generator", |n| {
-                n.choice(
-                    "mesh generator",
-                    &[
-                        ("box", "box"),
-                        ("annulus", "annulus"),
-                        ("spherical-shell", "spherical-shell"),
-                    ],
-                )
+                n.choice("mesh generator", &GENERATORS.map(|g| (g, g)))
             })?;
             match g {
                 "box" => generate_box(&t),
@@ -177,7 +184,7 @@ pub(crate) fn mesh(node: &Node<'_>, case_dir: &Path) -> Res<MeshSpec> {
 }
 
 fn generate_box(t: &Table<'_>) -> Res<MeshSpec> {
-    t.deny_unknown(&["generator", "min", "max", "cells", "grading"])?;
+    t.deny_unknown(keys::MESH_BOX)?;
     let min = t.need("min", |n| n.vec3())?;
     let max_node = t.req("max")?;
     let max = max_node.node().vec3()?;
@@ -209,18 +216,7 @@ fn radii(t: &Table<'_>) -> Res<(f64, f64)> {
 }
 
 fn generate_annulus(t: &Table<'_>) -> Res<MeshSpec> {
-    t.deny_unknown(&[
-        "generator",
-        "r_inner",
-        "r_outer",
-        "theta0",
-        "theta1",
-        "z0",
-        "z1",
-        "cells",
-        "radial_grading",
-        "translate",
-    ])?;
+    t.deny_unknown(keys::MESH_ANNULUS)?;
     let (r_inner, r_outer) = radii(t)?;
     let theta0 = t.opt("theta0", 0.0, |n| n.f64())?;
     let theta1 = t.opt("theta1", 90.0, |n| {
@@ -259,28 +255,9 @@ fn generate_annulus(t: &Table<'_>) -> Res<MeshSpec> {
 }
 
 fn generate_spherical_shell(t: &Table<'_>) -> Res<MeshSpec> {
-    use fv_mesh::spherical_shell::ShellPart;
-    t.deny_unknown(&[
-        "generator",
-        "r_inner",
-        "r_outer",
-        "part",
-        "cells",
-        "radial_grading",
-        "translate",
-    ])?;
+    t.deny_unknown(keys::MESH_SPHERICAL_SHELL)?;
     let (r_inner, r_outer) = radii(t)?;
-    let part = t.need("part", |n| {
-        n.choice(
-            "shell part",
-            &[
-                ("sphere", ShellPart::Sphere),
-                ("hemisphere", ShellPart::Hemisphere),
-                ("octant", ShellPart::Octant),
-                ("wedge", ShellPart::Wedge),
-            ],
-        )
-    })?;
+    let part = t.need("part", |n| n.choice("shell part", &SHELL_PARTS))?;
     let c = t.req("cells")?;
     let n = c.node();
     let items = n.array()?;

@@ -4,6 +4,7 @@ use fv_discretise::RhieChowHistory;
 use fv_nonlinear::NonlinearMethod;
 use std::path::PathBuf;
 
+use super::keys;
 use super::reader::{fmt_num, Res, Table};
 
 /// `analysis.kind`.
@@ -332,24 +333,61 @@ impl Default for OutputSettings {
     }
 }
 
+/// `analysis.kind` by name.
+pub(crate) const ANALYSIS_KINDS: [(&str, AnalysisKind); 2] = [
+    ("static", AnalysisKind::Static),
+    ("dynamic", AnalysisKind::Dynamic),
+];
+
+/// `analysis.strain` by name.
+pub(crate) const STRAIN_KINDS: [(&str, StrainKind); 2] =
+    [("small", StrainKind::Small), ("large", StrainKind::Large)];
+
+/// `solver.on_nonconvergence` by name.
+pub(crate) const ON_NONCONVERGENCE: [(&str, OnNonConvergence); 2] = [
+    ("abort", OnNonConvergence::Abort),
+    ("continue", OnNonConvergence::Continue),
+];
+
+/// `solver.rhie_chow_history` by name.
+pub(crate) const RHIE_CHOW_HISTORIES: [(&str, RhieChowHistory); 2] = [
+    ("incremental", RhieChowHistory::Incremental),
+    ("accumulated", RhieChowHistory::Accumulated),
+];
+
+/// `solver.acceleration` by name.
+pub(crate) const ACCELERATIONS: [(&str, Acceleration); 2] = [
+    ("none", Acceleration::None),
+    ("anderson", Acceleration::Anderson),
+];
+
+/// `solver.predictor` by name.
+pub(crate) const PREDICTORS: [(&str, Predictor); 2] =
+    [("none", Predictor::None), ("linear", Predictor::Linear)];
+
+/// `solver.coupling_fallback` by name.
+pub(crate) const COUPLING_FALLBACKS: [(&str, CouplingFallback); 2] = [
+    ("implicit", CouplingFallback::Implicit),
+    ("none", CouplingFallback::None),
+];
+
+/// `solver.linear.method` by name.
+pub(crate) const LINEAR_METHODS: [(&str, LinearMethod); 4] = [
+    ("pcg-ic", LinearMethod::PcgIc),
+    ("direct", LinearMethod::Direct),
+    ("bicgstab-ilu", LinearMethod::BicgstabIlu),
+    ("gmres", LinearMethod::Gmres),
+];
+
 pub(crate) fn analysis(t: &Table<'_>) -> Res<Analysis> {
-    t.deny_unknown(&["kind", "strain"])?;
+    t.deny_unknown(keys::ANALYSIS)?;
     let d = Analysis::default();
     Ok(Analysis {
         kind: t.opt("kind", d.kind, |n| {
-            n.choice(
-                "analysis kind",
-                &[
-                    ("static", AnalysisKind::Static),
-                    ("dynamic", AnalysisKind::Dynamic),
-                ],
-            )
+            n.choice("analysis kind", &ANALYSIS_KINDS)
         })?,
         strain: t.opt("strain", d.strain, |n| {
-            n.choice(
-                "strain kind",
-                &[("small", StrainKind::Small), ("large", StrainKind::Large)],
-            )
+            n.choice("strain kind", &STRAIN_KINDS)
         })?,
     })
 }
@@ -358,7 +396,7 @@ pub(crate) fn analysis(t: &Table<'_>) -> Res<Analysis> {
 const MAX_STEPS_FROM_STEP: f64 = 1e15;
 
 pub(crate) fn time(t: &Table<'_>) -> Res<TimeControl> {
-    t.deny_unknown(&["end", "steps", "step", "intervals"])?;
+    t.deny_unknown(keys::TIME)?;
     if let Some(intervals) = t.get("intervals") {
         return time_intervals(t, &intervals.node());
     }
@@ -510,20 +548,7 @@ pub(crate) fn solver(
     defaults: &SolverSettings,
     nonlinear_override: Option<NonlinearMethod>,
 ) -> Res<SolverSettings> {
-    t.deny_unknown(&[
-        "nonlinear",
-        "tolerance",
-        "max_outer",
-        "relaxation",
-        "on_nonconvergence",
-        "linear",
-        "rhie_chow",
-        "rhie_chow_history",
-        "acceleration",
-        "acceleration_depth",
-        "predictor",
-        "coupling_fallback",
-    ])?;
+    t.deny_unknown(keys::SOLVER)?;
     let nonlinear = t.opt("nonlinear", defaults.nonlinear, |n| {
         n.choice(
             "nonlinear method",
@@ -534,13 +559,7 @@ pub(crate) fn solver(
     let newton = nonlinear == NonlinearMethod::NewtonKrylov;
     let d = defaults.for_method(nonlinear);
     let acceleration = t.opt("acceleration", d.acceleration, |n| {
-        n.choice(
-            "outer-iteration acceleration",
-            &[
-                ("none", Acceleration::None),
-                ("anderson", Acceleration::Anderson),
-            ],
-        )
+        n.choice("outer-iteration acceleration", &ACCELERATIONS)
     })?;
     let linear_defaults = if newton {
         LinearSettings::for_newton()
@@ -579,13 +598,7 @@ pub(crate) fn solver(
             n.f64_if(|x| x > 0.0 && x <= 1.0, "satisfy 0 < relaxation <= 1")
         })?,
         on_nonconvergence: t.opt("on_nonconvergence", d.on_nonconvergence, |n| {
-            n.choice(
-                "on_nonconvergence action",
-                &[
-                    ("abort", OnNonConvergence::Abort),
-                    ("continue", OnNonConvergence::Continue),
-                ],
-            )
+            n.choice("on_nonconvergence action", &ON_NONCONVERGENCE)
         })?,
         linear,
         rhie_chow: t.opt("rhie_chow", d.rhie_chow, |n| {
@@ -593,13 +606,7 @@ pub(crate) fn solver(
         })?,
         rhie_chow_given: t.has("rhie_chow"),
         rhie_chow_history: t.opt("rhie_chow_history", d.rhie_chow_history, |n| {
-            n.choice(
-                "Rhie–Chow history",
-                &[
-                    ("incremental", RhieChowHistory::Incremental),
-                    ("accumulated", RhieChowHistory::Accumulated),
-                ],
-            )
+            n.choice("Rhie–Chow history", &RHIE_CHOW_HISTORIES)
         })?,
         acceleration,
         acceleration_depth_given: t.has("acceleration_depth"),
@@ -614,42 +621,19 @@ pub(crate) fn solver(
             Ok(m)
         })?,
         predictor: t.opt("predictor", d.predictor, |n| {
-            n.choice(
-                "increment predictor",
-                &[("none", Predictor::None), ("linear", Predictor::Linear)],
-            )
+            n.choice("increment predictor", &PREDICTORS)
         })?,
         coupling_fallback: t.opt("coupling_fallback", d.coupling_fallback, |n| {
-            n.choice(
-                "coupling fallback",
-                &[
-                    ("implicit", CouplingFallback::Implicit),
-                    ("none", CouplingFallback::None),
-                ],
-            )
+            n.choice("coupling fallback", &COUPLING_FALLBACKS)
         })?,
     })
 }
 
 fn linear(t: &Table<'_>, d: &LinearSettings) -> Res<LinearSettings> {
-    t.deny_unknown(&[
-        "method",
-        "tolerance",
-        "max_iterations",
-        "restart",
-        "preconditioner",
-    ])?;
+    t.deny_unknown(keys::LINEAR)?;
     Ok(LinearSettings {
         method: t.opt("method", d.method, |n| {
-            n.choice(
-                "linear solver method",
-                &[
-                    ("pcg-ic", LinearMethod::PcgIc),
-                    ("direct", LinearMethod::Direct),
-                    ("bicgstab-ilu", LinearMethod::BicgstabIlu),
-                    ("gmres", LinearMethod::Gmres),
-                ],
-            )
+            n.choice("linear solver method", &LINEAR_METHODS)
         })?,
         tolerance: t.opt("tolerance", d.tolerance, tolerance)?,
         max_iterations: t.opt("max_iterations", d.max_iterations, |n| n.usize_min(1))?,
@@ -673,7 +657,7 @@ fn linear(t: &Table<'_>, d: &LinearSettings) -> Res<LinearSettings> {
 pub const MAX_RESTART: usize = 500;
 
 pub(crate) fn output(t: &Table<'_>) -> Res<OutputSettings> {
-    t.deny_unknown(&["directory", "every"])?;
+    t.deny_unknown(keys::OUTPUT)?;
     let d = OutputSettings::default();
     Ok(OutputSettings {
         directory: t.opt("directory", d.directory, |n| {

@@ -1,6 +1,7 @@
 //! Time-dependent boundary values: constants or linearly interpolated time
 //! tables, scalar or vector, and the rigid-motion rotation.
 
+use super::keys;
 use super::reader::{Node, Res};
 
 /// A vector given as a constant or as a time table `[[t, [x, y, z]], ...]`.
@@ -98,7 +99,7 @@ fn read_table<T>(
     if !t.has("table") {
         return Err(node.err(format!("expected {forms}, got a table without `table`")));
     }
-    t.deny_unknown(&["table"])?;
+    t.deny_unknown(keys::TIME_TABLE)?;
     let table = t.req("table")?;
     let rows = table.node().array()?;
     if rows.is_empty() {
@@ -171,7 +172,7 @@ fn wrap(mut e: super::InputError, forms: &str) -> super::InputError {
 /// Reads `{ axis = [..], origin = [..]?, angle = <scalar or table> }`.
 pub(crate) fn rotation(node: &Node<'_>) -> Res<Rotation> {
     let t = node.table()?;
-    t.deny_unknown(&["axis", "origin", "angle"])?;
+    t.deny_unknown(keys::ROTATION)?;
     let axis_node = t.req("axis")?;
     let a = axis_node.node().vec3()?;
     // scale first so that huge components cannot overflow the norm

@@ -2,6 +2,7 @@
 //! (each release test binary costs CI seconds of linking).
 
 mod case_errors;
+mod case_format_doc;
 mod cli;
 mod examples;
 mod hdf5_output;

@@ -5,3 +5,4 @@ mod case_errors;
 mod cli;
 mod hdf5_output;
 mod newton_residual;
+mod plot;

@@ -416,3 +416,17 @@ fn draw_legend<DB: DrawingBackend>(
     }
     Ok(())
 }
+
+/// A number with four significant digits.
+pub(crate) fn num(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    let e = v.abs().log10().floor();
+    if (-3.0..5.0).contains(&e) {
+        let decimals = (3.0 - e).max(0.0) as usize;
+        format!("{v:.decimals$}")
+    } else {
+        format!("{v:.3e}")
+    }
+}

@@ -9,6 +9,9 @@
 //! - `contact_pressure_<body>-<patch>.png`, one per contact patch: the
 //!   contact pressure along the patch at the last increment written to the
 //!   `.h5` — [`pressure`];
+//! - `field_von_mises.png` for a two-dimensional (one-cell-thick) model:
+//!   the deformed mesh at the last increment, cells filled by the von
+//!   Mises stress, contact patches drawn — [`field`].
 //!
 //! Only what the run wrote is read (`history.csv`, the `.h5`, and
 //! `summary.json` / `log.txt` when present), so a run that was stopped
@@ -24,6 +27,7 @@
 //! ```
 mod chart;
 pub mod data;
+pub mod field;
 pub mod forces;
 pub mod iterations;
 pub mod patch_geometry;
@@ -131,7 +135,7 @@ pub fn plot_results(
     let file = folder.open_h5()?;
     if data::last_increment(&file).is_none() {
         report.notes.push(format!(
-            "{}: no increment written yet; contact pressure plots left out",
+            "{}: no increment written yet; contact pressure and field plots left out",
             folder.h5.display()
         ));
         return Ok(report);
@@ -146,6 +150,17 @@ pub fn plot_results(
             None => wrote(path, &mut report),
             Some(note) => report.notes.push(note),
         }
+    }
+    match field::read_last_plane_model(&file).map_err(|e| PlotError::read(&folder.h5, e))? {
+        Some(model) => {
+            let path = out.join(field::VON_MISES_PNG);
+            field::plot(&folder, &model, &path)?;
+            wrote(path, &mut report);
+        }
+        None => report.notes.push(format!(
+            "{} is drawn for two-dimensional (one-cell-thick) models only; left out",
+            field::VON_MISES_PNG
+        )),
     }
     Ok(report)
 }

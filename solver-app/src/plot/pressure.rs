@@ -10,7 +10,7 @@
 //! pairs' pressures added).
 use std::path::Path;
 
-use super::chart::{colour, draw_figure, Panel, Series};
+use super::chart::{colour, draw_figure, num, Panel, Series};
 use super::data::{self, History, ResultsFolder};
 pub use super::patch_geometry::Abscissa;
 use super::PlotError;
@@ -390,19 +390,5 @@ fn num_on(v: f64, scale: f64) -> String {
         "0".into()
     } else {
         num(v)
-    }
-}
-
-/// A number with four significant digits.
-fn num(v: f64) -> String {
-    if v == 0.0 || !v.is_finite() {
-        return format!("{v}");
-    }
-    let e = v.abs().log10().floor();
-    if (-3.0..5.0).contains(&e) {
-        let decimals = (3.0 - e).max(0.0) as usize;
-        format!("{v:.decimals$}")
-    } else {
-        format!("{v:.3e}")
     }
 }

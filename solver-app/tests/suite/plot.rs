@@ -97,6 +97,7 @@ fn plots_of_a_punch_run_and_the_numbers_behind_them() {
         ("forces.png", (1200, 80 + 420 * 2)),
         ("iterations.png", (1200, 80 + 360 * 3)),
         ("contact_pressure_base-ymax.png", (1200, 760)),
+        ("field_von_mises.png", (1200, 0)),
     ];
     assert_eq!(
         lines,
@@ -106,8 +107,11 @@ fn plots_of_a_punch_run_and_the_numbers_behind_them() {
             .collect::<Vec<_>>(),
         "one line per file written"
     );
-    for (f, size) in expected {
-        assert_eq!(png_size(&plots.join(f)), size, "{f}");
+    for (f, (w, h)) in expected {
+        let size = png_size(&plots.join(f));
+        // the field plot's height follows the model's aspect ratio
+        let h = if h == 0 { size.1 } else { h };
+        assert_eq!(size, (w, h), "{f}");
     }
 
     // the numbers: history columns
@@ -179,6 +183,31 @@ fn plots_of_a_punch_run_and_the_numbers_behind_them() {
     );
     let profile = pp.profile();
     assert!(profile.windows(2).all(|w| w[0].0 <= w[1].0));
+
+    // the field plot's model: plane (thickness along z), the block's 50
+    // cells as quadrilaterals, the punch rigid, both contact patches
+    let model = solver_app::plot::field::read_last_plane_model(&file)
+        .unwrap()
+        .unwrap();
+    assert_eq!((model.increment, model.normal_axis), (3, 2));
+    let base = model.bodies.iter().find(|b| b.name == "base").unwrap();
+    let punch = model.bodies.iter().find(|b| b.name == "punch").unwrap();
+    assert_eq!(base.cells.len(), 50);
+    assert!(base.cells.iter().all(|c| c.len() == 4));
+    assert!(!base.rigid && punch.rigid);
+    assert!(base.von_mises.iter().all(|v| *v > 0.0));
+    assert_eq!(base.patches.len(), 1);
+    assert_eq!(
+        (base.patches[0].0.as_str(), base.patches[0].1.len()),
+        ("ymax", 10)
+    );
+    assert_eq!(
+        (punch.patches[0].0.as_str(), punch.patches[0].1.len()),
+        ("ymin", 1)
+    );
+    // the punch's bottom moved down by the indentation
+    let seg = punch.patches[0].1[0];
+    assert!((seg[0].1 - 0.49).abs() < 1e-12 && (seg[1].1 - 0.49).abs() < 1e-12);
 }
 
 #[test]
@@ -195,7 +224,7 @@ fn an_interrupted_run_is_plotted_up_to_where_it_got() {
     std::fs::write(res.join("history.csv"), lines.join("\n")).unwrap();
     let (code, out, err) = plot(&res);
     assert_eq!(code, 0, "{err}");
-    assert_eq!(out.len(), 3, "{out:?}");
+    assert_eq!(out.len(), 4, "{out:?}");
     assert!(err.contains("history.csv line 4: incomplete"), "{err}");
     let h = History::read(&res.join("history.csv")).unwrap();
     assert_eq!(h.rows.len(), 2);

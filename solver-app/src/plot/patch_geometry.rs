@@ -20,13 +20,16 @@ use nalgebra::{DMatrix, DVector, Vector3};
 type V3 = Vector3<f64>;
 
 /// What the position along a patch measures.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Abscissa {
     /// Arc length along a two-dimensional model's patch from the pressure
     /// centre (signed, increasing along the patch's main coordinate).
     ArcLength,
     /// Distance from the axis of an axisymmetric (wedge) model.
-    Radius,
+    Radius {
+        /// The wedge's opening angle (radians), from the same fit.
+        wedge_angle: f64,
+    },
     /// Distance of the face centre from the pressure centre.
     Distance,
 }
@@ -38,7 +41,7 @@ impl Abscissa {
             Abscissa::ArcLength => {
                 "s: arc length along the patch from the pressure centre (mesh length unit)"
             }
-            Abscissa::Radius => "r: distance from the axis of symmetry (mesh length unit)",
+            Abscissa::Radius { .. } => "r: distance from the axis of symmetry (mesh length unit)",
             Abscissa::Distance => {
                 "distance of the face centre from the pressure centre (mesh length unit)"
             }
@@ -232,8 +235,8 @@ pub fn face_positions(
         .collect();
     let total: f64 = weights.iter().sum();
     if let Some(runs) = strip_runs(faces) {
-        if let Some(r) = radii(&runs, points, centres) {
-            return (Abscissa::Radius, r);
+        if let Some((r, wedge_angle)) = radii(&runs, points, centres) {
+            return (Abscissa::Radius { wedge_angle }, r);
         }
         let s = arc_lengths(&runs, points);
         let centre = if total > 0.0 {
@@ -341,9 +344,9 @@ fn arc_lengths(runs: &[Run], points: &[[f64; 3]]) -> Vec<f64> {
 /// function of the position of their mid-points in the mid-plane (the
 /// mid-point lies at r cos(θ/2) from the axis). Least squares
 /// α u + β v + γ = w over the nodes; the axis is the line where the left
-/// side vanishes. `None` for a plane strip (all widths equal) or when the
-/// fit is poor.
-fn radii(runs: &[Run], points: &[[f64; 3]], centres: &[[f64; 3]]) -> Option<Vec<f64>> {
+/// side vanishes. Returns the radii and the wedge angle θ; `None` for a
+/// plane strip (all widths equal) or when the fit is poor.
+fn radii(runs: &[Run], points: &[[f64; 3]], centres: &[[f64; 3]]) -> Option<(Vec<f64>, f64)> {
     let nodes: Vec<(V3, f64, Option<V3>)> = runs
         .iter()
         .flat_map(|r| r.nodes.iter().map(|&n| node_geometry(n, points)))
@@ -397,15 +400,14 @@ fn radii(runs: &[Run], points: &[[f64; 3]], centres: &[[f64; 3]]) -> Option<Vec<
     // distance of a mid-plane point from the axis, then from mid-plane
     // distance r cos(θ/2) to the radius r: tan(θ/2) = g/2
     let stretch = (1.0 + 0.25 * g * g).sqrt();
-    Some(
-        centres
-            .iter()
-            .map(|c| {
-                let (x0, y0) = coords(&V3::from(*c));
-                ((x[0] * x0 + x[1] * y0 + x[2]) / g * stretch).max(0.0)
-            })
-            .collect(),
-    )
+    let radii = centres
+        .iter()
+        .map(|c| {
+            let (x0, y0) = coords(&V3::from(*c));
+            ((x[0] * x0 + x[1] * y0 + x[2]) / g * stretch).max(0.0)
+        })
+        .collect();
+    Some((radii, 2.0 * (0.5 * g).atan()))
 }
 
 #[cfg(test)]
@@ -499,7 +501,10 @@ mod tests {
         let p = vec![1.0; faces.len()];
         let area = vec![1.0; faces.len()];
         let (kind, r) = face_positions(&faces, &pts, &centres, &p, &area);
-        assert_eq!(kind, Abscissa::Radius);
+        let Abscissa::Radius { wedge_angle } = kind else {
+            panic!("{kind:?}")
+        };
+        assert!((wedge_angle - 2.0 * h).abs() < 1e-9, "{wedge_angle}");
         // the triangle's centroid at 2/3 of the first node's radius
         assert!((r[0] - 2.0 / 30.0).abs() < 1e-9, "{}", r[0]);
         for (i, r) in r.iter().enumerate().skip(1) {

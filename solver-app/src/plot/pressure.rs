@@ -279,7 +279,7 @@ pub fn plot(
     let all = fit_all(&profile);
     let x_range = match (pp.contact_extent(), pp.abscissa) {
         (None, _) => None,
-        (Some((_, hi)), Abscissa::Radius) => {
+        (Some((_, hi)), Abscissa::Radius { .. }) => {
             let beyond = next_out(&profile, hi, 1.0).unwrap_or(hi);
             Some((0.0, (1.5 * hi).max(beyond).min(all.1)))
         }
@@ -295,7 +295,6 @@ pub fn plot(
             ))
         }
     };
-    let zoomed = x_range.is_some_and(|(a, b)| a > all.0 + 1e-12 || b < all.1 - 1e-12);
     let x_range = x_range.map(|(a, b)| {
         let m = 0.02 * (b - a).max(1e-300);
         (a - m, b + m)
@@ -307,7 +306,7 @@ pub fn plot(
     if let Some((lo, hi)) = pp.contact_extent() {
         let scale = (hi - lo).abs().max(1e-300);
         facts.push(format!(
-            "faces in contact from {} to {}",
+            "in contact from {} to {}",
             num_on(lo, scale),
             num_on(hi, scale)
         ));
@@ -323,8 +322,15 @@ pub fn plot(
                 .position(|&t| (t - pp.time).abs() <= 1e-9 * pp.time.abs().max(1e-300))
                 .map(|i| v[i])
         });
-    if let Some(f) = normal {
-        facts.push(format!("normal force {}", num(f)));
+    match (normal, pp.abscissa) {
+        (Some(f), Abscissa::Radius { wedge_angle }) if wedge_angle > 0.0 => facts.push(format!(
+            "normal force {} ({:.3}° wedge; {} over 360°)",
+            num(f),
+            wedge_angle.to_degrees(),
+            num(f * std::f64::consts::TAU / wedge_angle)
+        )),
+        (Some(f), _) => facts.push(format!("normal force {}", num(f))),
+        (None, _) => {}
     }
     let style_markers_only = pp.abscissa == Abscissa::Distance;
     let mut series = Series::curve(
@@ -334,10 +340,7 @@ pub fn plot(
     );
     series.markers = true;
     series.line = !style_markers_only;
-    let mut title = facts.join("; ");
-    if zoomed {
-        title.push_str(" (zoomed on the contact)");
-    }
+    let title = facts.join("; ");
     let panel = Panel {
         title,
         x_label: pp.abscissa.label().to_string(),

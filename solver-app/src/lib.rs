@@ -22,6 +22,7 @@ pub mod model;
 pub mod newton;
 pub mod nonlinear_solver;
 pub mod output;
+pub mod plot;
 pub mod predictor;
 pub mod profile;
 pub mod results;

@@ -39,6 +39,13 @@ enum Command {
         /// The case file (TOML).
         case: PathBuf,
     },
+    /// PNG plots of a results folder (finished or interrupted run) into
+    /// RESULTS_DIR/plots/: forces and iterations against time, contact
+    /// pressure along each contact patch at the last increment.
+    Plot {
+        /// The results folder of a run (<output>/<title>/).
+        results_dir: PathBuf,
+    },
 }
 
 fn parse_method(s: &str) -> Result<fv_nonlinear::NonlinearMethod, String> {
@@ -80,6 +87,21 @@ fn main() -> ExitCode {
         .with_level(false)
         .init();
     match cli.command {
+        Command::Plot { results_dir } => {
+            let written = |p: &std::path::Path| println!("{}", p.display());
+            match solver_app::plot::plot_results(&results_dir, &mut { written }) {
+                Ok(report) => {
+                    for n in &report.notes {
+                        eprintln!("note: {n}");
+                    }
+                    ExitCode::SUCCESS
+                }
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::from(e.exit_code())
+                }
+            }
+        }
         Command::Check { case } => {
             let case = match load_case(&case) {
                 Ok(c) => c,

@@ -7,3 +7,4 @@ mod cli;
 mod examples;
 mod hdf5_output;
 mod newton_residual;
+mod plot;

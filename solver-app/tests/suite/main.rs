@@ -4,4 +4,5 @@
 mod case_errors;
 mod cli;
 mod hdf5_output;
+mod interrupt;
 mod newton_residual;

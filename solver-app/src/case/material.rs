@@ -40,6 +40,23 @@ pub struct MaterialSpec {
     pub hardening_table: Option<Vec<(f64, f64)>>,
 }
 
+impl MaterialSpec {
+    /// What a rigid body without `material` gets: a rigid body is not
+    /// solved, so no law of it is ever evaluated (Hooke's law, E = 1).
+    pub fn unused() -> Self {
+        MaterialSpec {
+            model: MaterialModel::LinearElastic,
+            e: 1.0,
+            nu: 0.0,
+            rho: None,
+            plane_stress: false,
+            yield_stress: None,
+            hardening: None,
+            hardening_table: None,
+        }
+    }
+}
+
 const KEYS: [&str; 8] = [
     "model",
     "E",

@@ -17,6 +17,8 @@
 //! residual: the Jacobian products must reuse the problem's frozen contact
 //! pairs and a preconditioner built from the segregated operator, which
 //! no Rust crate's Newton solver offers (PETSc's SNES does, behind FFI).
+use std::ops::ControlFlow;
+
 use crate::forcing::{Forcing, ForcingParams};
 use crate::gmres::{Gmres, GmresParams, KrylovSystem};
 use crate::line_search::{next_length, sufficient, LineSearchParams, NonMonotone, STALL_PROGRESS};
@@ -152,6 +154,14 @@ pub enum NewtonError {
         steps: usize,
         /// Relative residual at the last iterate.
         residual: f64,
+        /// The counts until then.
+        info: NewtonInfo,
+    },
+    /// The caller asked to stop (the `on_iteration` callback broke).
+    #[error("Newton iteration {iteration}: stopped by the caller")]
+    Interrupted {
+        /// The Newton iteration after which it stopped.
+        iteration: usize,
         /// The counts until then.
         info: NewtonInfo,
     },
@@ -318,12 +328,14 @@ impl NewtonKrylov {
     /// Solves F(x) = 0 from the starting point `x` (overwritten with the
     /// last accepted iterate, also when the tolerance is not reached).
     /// `on_iteration` is called at the start (iteration 0) and after
-    /// every accepted step.
+    /// every accepted step; when it returns [`ControlFlow::Break`] the
+    /// solve stops there with [`NewtonError::Interrupted`] (`x` holds that
+    /// iterate).
     pub fn solve<P: NonlinearProblem>(
         &mut self,
         problem: &mut P,
         x: &mut [f64],
-        on_iteration: &mut dyn FnMut(&IterationReport),
+        on_iteration: &mut dyn FnMut(&IterationReport) -> ControlFlow<()>,
     ) -> Result<NewtonInfo, NewtonError> {
         let n = problem.len();
         if self.f.len() != n {
@@ -358,10 +370,14 @@ impl NewtonKrylov {
         let mut last_krylov = self.last_krylov.take();
         history.push(fnorm);
         info.residual = relative(fnorm, reference);
-        on_iteration(&IterationReport {
+        if on_iteration(&IterationReport {
             residual: info.residual,
             ..Default::default()
-        });
+        })
+        .is_break()
+        {
+            return Err(NewtonError::Interrupted { iteration: 0, info });
+        }
         for k in 1..=params.max_iterations {
             let target = (params.tolerance * reference).max(problem.roundoff_floor());
             if fnorm <= target {
@@ -567,7 +583,9 @@ impl NewtonKrylov {
             report.residual = info.residual;
             report.step_length = lambda;
             report.step_norm = lambda * norm(&self.dx);
-            on_iteration(&report);
+            if on_iteration(&report).is_break() {
+                return Err(NewtonError::Interrupted { iteration: k, info });
+            }
             // the steps of the damped motion are no Newton steps to judge
             // progress by
             if fnorm < STALL_PROGRESS * stall_base || continuing {

@@ -81,7 +81,10 @@ fn bratu_converges_quadratically_to_the_lower_branch() {
     };
     let mut residuals = Vec::new();
     let info = NewtonKrylov::new(n, params)
-        .solve(&mut p, &mut x, &mut |r| residuals.push(r.residual))
+        .solve(&mut p, &mut x, &mut |r| {
+            residuals.push(r.residual);
+            std::ops::ControlFlow::Continue(())
+        })
         .unwrap();
     assert!(info.converged, "{info:?}");
     assert!(info.iterations <= 6, "{info:?} {residuals:?}");
@@ -185,7 +188,7 @@ fn penalty_contact_active_set_settles_in_a_few_newton_iterations() {
         ..Default::default()
     };
     let info = NewtonKrylov::new(n, params)
-        .solve(&mut p, &mut x, &mut |_| {})
+        .solve(&mut p, &mut x, &mut |_| std::ops::ControlFlow::Continue(()))
         .unwrap();
     assert!(info.converged, "{info:?}");
     assert!(info.iterations <= 25, "{info:?}");

@@ -49,7 +49,9 @@ fn increment(c: &mut Criterion) {
             |mut bodies| {
                 let mut contacts = ContactSet::default();
                 let mut solver = NewtonKrylovSolver::new(&bodies, &case.solver);
-                let info = solver.solve_increment(&mut bodies, &mut contacts, &mut |_, _| {});
+                let info = solver.solve_increment(&mut bodies, &mut contacts, &mut |_, _| {
+                    std::ops::ControlFlow::Continue(())
+                });
                 if !reported {
                     if let Ok(i) = &info {
                         eprintln!(

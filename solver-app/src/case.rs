@@ -73,7 +73,8 @@ pub struct BodySpec {
     pub name: String,
     /// Where the mesh comes from.
     pub mesh: MeshSpec,
-    /// Material.
+    /// Material; of a rigid body optional and never evaluated
+    /// ([`MaterialSpec::unused`] when absent).
     pub material: MaterialSpec,
     /// Not solved: every point follows its boundary motion (default false).
     pub rigid: bool,
@@ -388,8 +389,12 @@ fn body(n: &Node<'_>, dir: &Path) -> Res<BodySpec> {
         Ok(s.to_owned())
     })?;
     let mesh = t.need("mesh", |n| mesh::mesh(n, dir))?;
-    let material = t.need("material", material::material)?;
     let rigid = t.opt("rigid", false, |n| n.bool())?;
+    // a rigid body is not solved: its material may be left out
+    let material = match rigid {
+        true => t.opt("material", MaterialSpec::unused(), material::material)?,
+        false => t.need("material", material::material)?,
+    };
     let mut boundary = Vec::new();
     if let Some(b) = t.get("boundary") {
         let node = b.node();

@@ -17,6 +17,7 @@ pub mod contact_coupling;
 pub mod coupled_spring_solve;
 pub mod field_output;
 pub mod initial_overlap;
+pub mod interrupt;
 pub mod mesh_loading;
 pub mod model;
 pub mod newton;

@@ -4,7 +4,10 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use solver_app::case::load_case;
-use solver_app::run::{check_support, run_case, set_up_with_contacts, RunError, RunOptions};
+use solver_app::interrupt::{exit_code, Interrupt};
+use solver_app::run::{
+    check_support, run_case, set_up_with_contacts, RunError, RunOptions, RunOutcome,
+};
 
 /// Finite-volume solver for large-deformation frictional contact.
 #[derive(Parser)]
@@ -168,14 +171,24 @@ fn main() -> ExitCode {
                     return ExitCode::from(2);
                 }
             };
+            // Ctrl-C and SIGTERM end the run with its results so far
+            let interrupt = Interrupt::install().unwrap_or_else(|e| {
+                eprintln!("note: cannot catch SIGINT/SIGTERM ({e}); they end the run at once");
+                Interrupt::new()
+            });
             let opts = RunOptions {
                 output,
                 quiet,
                 no_files: false,
                 no_cutbacks: false,
+                interrupt,
             };
             match run_case(&case, &opts) {
                 Ok(out) if out.converged => ExitCode::SUCCESS,
+                Ok(RunOutcome {
+                    interrupted: Some(sig),
+                    ..
+                }) => ExitCode::from(exit_code(sig)),
                 Ok(out) => {
                     eprintln!(
                         "error: {}",

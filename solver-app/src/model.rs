@@ -707,6 +707,20 @@ fn build_body(
     }
     let (mut setup_notes, from_mesh) =
         conditions_from_mesh_types(case, bi, spec, &mesh, &mut patch_specs)?;
+    let moved = |s: &BoundarySpec| {
+        matches!(
+            s,
+            BoundarySpec::Displacement { .. } | BoundarySpec::RigidMotion { .. }
+        )
+    };
+    if spec.rigid && !patch_specs.iter().flatten().any(moved) {
+        // refresh_conditions: no motion is the identity
+        let msg = format!(
+            "body '{}' is rigid and no patch of it has a \"displacement\" or \"rigid-motion\" condition: it is held fixed where it is",
+            spec.name
+        );
+        setup_notes.push(src.error(&format!("body[{bi}]"), msg).to_string());
+    }
     check_one_cell_thick(&mesh, &patch_specs).map_err(|(p, msg)| {
         if from_mesh.contains(&p) {
             src.error(

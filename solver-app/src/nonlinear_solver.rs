@@ -2,6 +2,8 @@
 //! increment ([`fv_nonlinear::NonlinearMethod`]): the time loop — load
 //! steps, cut-backs, force control, output, summary — is the same for
 //! every method and calls it through [`NonlinearSolver`].
+use std::ops::ControlFlow;
+
 use crate::case::SolverSettings;
 use crate::contact_coupling::ContactSet;
 use crate::model::Body;
@@ -41,12 +43,14 @@ pub trait NonlinearSolver {
 
     /// Solves one increment; on entry the bodies hold the converged state
     /// of the previous one and the conditions of this one, on exit the
-    /// fields are those of the final iterate.
+    /// fields are those of the final iterate. `on_iteration` hears of every
+    /// nonlinear iteration (number, residual); when it breaks, the attempt
+    /// ends with [`SolveError::Interrupted`].
     fn solve_increment(
         &mut self,
         bodies: &mut [Body],
         contacts: &mut ContactSet,
-        on_iteration: &mut dyn FnMut(usize, f64),
+        on_iteration: &mut dyn FnMut(usize, f64) -> ControlFlow<()>,
     ) -> Result<IncrementInfo, SolveError>;
 
     /// Cells of all deformable bodies.
@@ -119,7 +123,7 @@ impl NonlinearSolver for SegregatedSolver {
         &mut self,
         bodies: &mut [Body],
         contacts: &mut ContactSet,
-        on_iteration: &mut dyn FnMut(usize, f64),
+        on_iteration: &mut dyn FnMut(usize, f64) -> ControlFlow<()>,
     ) -> Result<IncrementInfo, SolveError> {
         SegregatedSolver::solve_increment(self, bodies, contacts, on_iteration)
     }

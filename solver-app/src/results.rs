@@ -328,6 +328,12 @@ pub struct Summary {
     pub converged: bool,
     /// Increments completed.
     pub increments: usize,
+    /// Time of the last increment completed (of its last converged
+    /// sub-step when a later one failed); 0 before the first.
+    pub time_reached: f64,
+    /// The signal that stopped the run before its end (`"SIGINT"`,
+    /// `"SIGTERM"`), if one did.
+    pub interrupted: Option<String>,
     /// Total outer iterations.
     pub outer_iterations: usize,
     /// Total linear-solver iterations.
@@ -351,59 +357,87 @@ pub struct Summary {
     pub coupling_switched: Vec<String>,
 }
 
+/// The physical figures of `summary.json` at one state: the reaction of
+/// every reported patch and the statistics of every contact pair. Taken
+/// after every increment written, so that a run that stops in the middle
+/// of an increment (failure, interrupt) reports the last one written,
+/// not the abandoned iterate.
+#[derive(Debug, Clone, Default)]
+pub struct SummaryFigures {
+    patches: serde_json::Map<String, serde_json::Value>,
+    contacts: Vec<serde_json::Value>,
+}
+
+impl SummaryFigures {
+    /// The figures of the bodies and contacts as they are.
+    pub fn of(bodies: &[Body], contacts: &ContactSet) -> Self {
+        let mut patches = serde_json::Map::new();
+        for (bi, p, name) in reported_patches(bodies) {
+            let b = &bodies[bi];
+            let f = patch_reaction(bodies, bi, p, contacts);
+            let area: f64 = b.mesh.patches[p].faces().map(|f| b.geom.face_mag[f]).sum();
+            patches.insert(
+                name,
+                serde_json::json!({ "reaction_force": [f.x, f.y, f.z], "area": area }),
+            );
+        }
+        let contacts = contacts
+            .interfaces
+            .iter()
+            .map(|c| {
+                let t = c.stats.tangential_force;
+                serde_json::json!({
+                    "master": c.master_name,
+                    "slave": c.slave_name,
+                    "coupling": if c.implicit { "implicit" } else { "explicit" },
+                    "normal_force": c.stats.normal_force,
+                    "tangential_force": [t.x, t.y, t.z],
+                    "max_pressure": c.stats.max_pressure,
+                    "contact_area": c.stats.contact_area,
+                    "max_penetration": c.stats.max_penetration,
+                    "augmentation_updates": c.augmentation_updates_run,
+                })
+            })
+            .collect();
+        SummaryFigures { patches, contacts }
+    }
+}
+
 /// Writes `summary.json` (atomically: temp file + rename).
 pub fn write_summary(
     dir: &Path,
     s: &Summary,
-    bodies: &[Body],
-    contacts: &ContactSet,
+    figures: &SummaryFigures,
 ) -> std::io::Result<PathBuf> {
-    let mut patches = serde_json::Map::new();
-    for (bi, p, name) in reported_patches(bodies) {
-        let b = &bodies[bi];
-        let f = patch_reaction(bodies, bi, p, contacts);
-        let area: f64 = b.mesh.patches[p].faces().map(|f| b.geom.face_mag[f]).sum();
-        patches.insert(
-            name,
-            serde_json::json!({ "reaction_force": [f.x, f.y, f.z], "area": area }),
-        );
-    }
     let mut v = serde_json::json!({
         "title": s.title,
         "converged": s.converged,
         "increments": s.increments,
+        "time_reached": s.time_reached,
+        "interrupted": s.interrupted.is_some(),
         "outer_iterations": s.outer_iterations,
         "linear_iterations": s.linear_iterations,
         "residual_evaluations": s.residual_evaluations,
         "nonlinear": s.nonlinear,
         "wall_seconds": s.wall_seconds,
         "cells": s.cells,
-        "patches": patches,
-        "contacts": contacts.interfaces.iter().map(|c| {
-            let t = c.stats.tangential_force;
-            serde_json::json!({
-                "master": c.master_name,
-                "slave": c.slave_name,
-                // `coupling` is the segregated method's; Newton–Krylov
-                // solves the contact inside its Newton loop
-                "coupling": if s.nonlinear == fv_nonlinear::NonlinearMethod::NewtonKrylov.name() {
-                    "newton"
-                } else if c.implicit {
-                    "implicit"
-                } else {
-                    "explicit"
-                },
-                "normal_force": c.stats.normal_force,
-                "tangential_force": [t.x, t.y, t.z],
-                "max_pressure": c.stats.max_pressure,
-                "contact_area": c.stats.contact_area,
-                "max_penetration": c.stats.max_penetration,
-                "augmentation_updates": c.augmentation_updates_run,
-            })
-        }).collect::<Vec<_>>(),
+        "patches": figures.patches,
+        "contacts": figures.contacts,
     });
+    // `coupling` is the segregated method's; Newton–Krylov solves the
+    // contact inside its Newton loop
+    if s.nonlinear == fv_nonlinear::NonlinearMethod::NewtonKrylov.name() {
+        if let Some(list) = v["contacts"].as_array_mut() {
+            for c in list {
+                c["coupling"] = serde_json::Value::from("newton");
+            }
+        }
+    }
     if !s.coupling_switched.is_empty() {
         v["coupling_switched"] = serde_json::json!(s.coupling_switched);
+    }
+    if let Some(sig) = &s.interrupted {
+        v["interrupted_by"] = serde_json::Value::String(sig.clone());
     }
     if let Some(reason) = &s.failure {
         v["failure"] = serde_json::Value::String(reason.clone());

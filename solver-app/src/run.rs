@@ -1,16 +1,20 @@
 //! `fvc run`: load, set up, solve every increment, write results.
 use std::io::IsTerminal;
+use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use crate::case::{Case, Coupling, InputError, OnNonConvergence};
 use crate::contact_coupling::ContactSet;
 use crate::field_output::FieldOutput;
+use crate::interrupt::{signal_name, Interrupt};
 use crate::mesh_loading::load_mesh;
 use crate::model::{build_bodies, Body};
 use crate::nonlinear_solver::{self, NonlinearSolver};
 use crate::predictor::PathChange;
-use crate::results::{history_columns, history_row, write_summary, History, RunLog, Summary};
+use crate::results::{
+    history_columns, history_row, write_summary, History, RunLog, Summary, SummaryFigures,
+};
 use crate::segregated::{IncrementInfo, SegregatedSolver, SolveError};
 use fv_nonlinear::NonlinearMethod;
 
@@ -47,6 +51,9 @@ pub struct RunOptions {
     /// the outer iterations of one step, e.g. the coupling efficiency of
     /// thesis Tables 4.5–4.7).
     pub no_cutbacks: bool,
+    /// Asks the run to stop (SIGINT, SIGTERM; [`Interrupt::install`]):
+    /// it ends after the write under way with the results so far.
+    pub interrupt: Interrupt,
 }
 
 /// Result of a run.
@@ -55,6 +62,8 @@ pub struct RunOutcome {
     pub converged: bool,
     /// Why the run stopped early.
     pub failure: Option<String>,
+    /// The signal that stopped the run before its end, if one did.
+    pub interrupted: Option<i32>,
     /// The bodies with their final fields.
     pub bodies: Vec<Body>,
     /// The contact pairs with their final tractions.
@@ -272,8 +281,19 @@ fn run_case_noting(
     let may_switch = case.solver.coupling_fallback == crate::case::CouplingFallback::Implicit
         && method == NonlinearMethod::Segregated;
     let mut evaluations = 0usize;
+    let mut interrupted = None;
+    // the summary's forces of the last increment written (the start
+    // state's before the first)
+    let mut figures = match dir {
+        Some(_) => SummaryFigures::of(&bodies, &contacts),
+        None => SummaryFigures::default(),
+    };
     for k in 1..=case.time.steps {
-        if failure.is_some() {
+        if failure.is_some() || interrupted.is_some() {
+            break;
+        }
+        if let Some(sig) = opts.interrupt.requested() {
+            interrupted = Some(sig);
             break;
         }
         let t = case.time.time_at(k);
@@ -343,9 +363,21 @@ fn run_case_noting(
                         pb.set_message(format!("outer {outer} residual {res:.2e}"));
                     }
                 }
+                match opts.interrupt.requested() {
+                    Some(_) => ControlFlow::Break(()),
+                    None => ControlFlow::Continue(()),
+                }
             });
             for note in solver.take_notes() {
                 log.warn(&format!("increment {k}: {note}"));
+            }
+            if let Err(SolveError::Interrupted) = attempt {
+                // back to the last converged state, which the results hold
+                for b in bodies.iter_mut() {
+                    b.restore_start();
+                }
+                contacts.restore_start();
+                break Err(SolveError::Interrupted);
             }
             let failed = match &attempt {
                 Ok(info) => !info.converged,
@@ -498,6 +530,7 @@ fn run_case_noting(
         match result {
             Ok((info, t)) => {
                 summary.increments = k;
+                summary.time_reached = t;
                 summary.outer_iterations += info.outer_iterations;
                 summary.linear_iterations += info.linear_iterations;
                 cell_iterations += (info.outer_iterations * solver.n_unknowns()) as f64;
@@ -538,6 +571,9 @@ fn run_case_noting(
                     &bodies,
                     &contacts,
                 )?;
+                if dir.is_some() {
+                    figures = SummaryFigures::of(&bodies, &contacts);
+                }
                 let accepted =
                     info.converged || case.solver.on_nonconvergence == OnNonConvergence::Continue;
                 if accepted {
@@ -623,13 +659,20 @@ fn run_case_noting(
                         &bodies,
                         &contacts,
                     )?;
+                    if dir.is_some() {
+                        figures = SummaryFigures::of(&bodies, &contacts);
+                    }
                     summary.outer_iterations += total.outer_iterations;
                     summary.linear_iterations += total.linear_iterations;
+                    summary.time_reached = t0;
                     msg.push_str(&format!(
                         "; its last converged sub-step, t = {t0:.6e}, is written as increment {k}"
                     ));
                 }
-                failure = Some(msg);
+                match e {
+                    SolveError::Interrupted => interrupted = opts.interrupt.requested(),
+                    _ => failure = Some(msg),
+                }
             }
         }
     }
@@ -642,6 +685,12 @@ fn run_case_noting(
         summary.converged = false;
         summary.failure = Some(f.clone());
         log.warn(&format!("run failed: {f}"));
+    }
+    if let Some(sig) = interrupted {
+        // the run did not reach its end: not `converged`, whatever the
+        // increments it solved
+        summary.converged = false;
+        summary.interrupted = Some(signal_name(sig));
     }
     if cell_iterations > 0.0 {
         log.info(&format!(
@@ -667,12 +716,34 @@ fn run_case_noting(
         w.close().map_err(out_err)?;
     }
     if let Some(d) = &dir {
-        write_summary(d, &summary, &bodies, &contacts).map_err(io_err)?;
-        log.info(&format!("results in {}", d.display()));
+        if failure.is_none() && interrupted.is_none() {
+            // the end state (what a normal run always reported)
+            figures = SummaryFigures::of(&bodies, &contacts);
+        }
+        write_summary(d, &summary, &figures).map_err(io_err)?;
+        match interrupted {
+            Some(sig) => log.warn(&format!(
+                "interrupted by {} after increment {}/{} (t = {:.6e}): results so far in {}",
+                signal_name(sig),
+                summary.increments,
+                case.time.steps,
+                summary.time_reached,
+                d.display()
+            )),
+            None => log.info(&format!("results in {}", d.display())),
+        }
+    } else if let Some(sig) = interrupted {
+        log.warn(&format!(
+            "interrupted by {} after increment {}/{}",
+            signal_name(sig),
+            summary.increments,
+            case.time.steps
+        ));
     }
     Ok(RunOutcome {
-        converged: failure.is_none(),
+        converged: failure.is_none() && interrupted.is_none(),
         failure,
+        interrupted,
         bodies,
         contacts,
         summary,

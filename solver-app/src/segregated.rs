@@ -13,7 +13,7 @@ use fv_discretise::{
     CsrMatrix, FaceSlots, LinearSolver, LinearSolverError, MomentumParams, SolveInfo,
 };
 use fv_mesh::Vector;
-use std::ops::Range;
+use std::ops::{ControlFlow, Range};
 use std::time::Instant;
 
 /// Smallest reference of the relative residual, as a fraction of the total
@@ -217,6 +217,9 @@ pub enum SolveError {
     /// decreased the residual, the preconditioner failed).
     #[error("{0}")]
     Nonlinear(String),
+    /// The run was asked to stop (SIGINT, SIGTERM) during the attempt.
+    #[error("interrupted")]
+    Interrupted,
     /// The matrix is singular: a body cannot carry load in some direction.
     #[error("body '{body}'{part} is not held in the {axis} direction: give it a displacement, symmetry or normal-displacement condition (no rigid-body motion can be solved statically)")]
     Unconstrained {
@@ -1348,12 +1351,13 @@ impl SegregatedSolver {
     /// Solves one load increment by outer iterations; on entry the bodies
     /// hold the converged fields of the previous increment and the boundary
     /// values of this one. On exit the fields are consistent with the final
-    /// displacement.
+    /// displacement. `on_iteration` hears of every outer iteration; when
+    /// it breaks, the attempt ends with [`SolveError::Interrupted`].
     pub fn solve_increment(
         &mut self,
         bodies: &mut [Body],
         contacts: &mut ContactSet,
-        mut on_iteration: impl FnMut(usize, f64),
+        mut on_iteration: impl FnMut(usize, f64) -> ControlFlow<()>,
     ) -> Result<IncrementInfo, SolveError> {
         self.begin_increment(bodies, contacts);
         let mut info = IncrementInfo {
@@ -1376,7 +1380,9 @@ impl SegregatedSolver {
             info.outer_iterations = outer;
             info.residual_evaluations = outer;
             info.residual = residual;
-            on_iteration(outer, residual);
+            if on_iteration(outer, residual).is_break() {
+                return Err(SolveError::Interrupted);
+            }
             let cycling = (residual / before_last - 1.0).abs() < CYCLE_MATCH
                 && (residual / last - 1.0).abs() > CYCLE_SWING;
             in_cycle = if cycling { in_cycle + 1 } else { 0 };

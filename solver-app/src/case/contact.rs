@@ -209,6 +209,12 @@ pub(crate) fn contact(node: &Node<'_>, bodies: &[&str]) -> Res<ContactSpec> {
             slave.0, slave.1
         )));
     }
+    if slave.0 == master.0 {
+        return Err(slave_node.node().err(format!(
+            "master \"{}/{}\" and slave \"{}/{}\" are patches of one body: self-contact is not supported",
+            master.0, master.1, slave.0, slave.1
+        )));
+    }
     let (relaxation_normal, relaxation_tangential) = match t.get("relaxation") {
         None => (0.1, 0.1),
         Some(r) => {

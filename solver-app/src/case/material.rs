@@ -48,6 +48,23 @@ pub(crate) const MODELS: [(&str, MaterialModel); 3] = [
     ("neo-hookean-plastic", MaterialModel::NeoHookeanPlastic),
 ];
 
+impl MaterialSpec {
+    /// What a rigid body without `material` gets: a rigid body is not
+    /// solved, so no law of it is ever evaluated (Hooke's law, E = 1).
+    pub fn unused() -> Self {
+        MaterialSpec {
+            model: MaterialModel::LinearElastic,
+            e: 1.0,
+            nu: 0.0,
+            rho: None,
+            plane_stress: false,
+            yield_stress: None,
+            hardening: None,
+            hardening_table: None,
+        }
+    }
+}
+
 pub(crate) fn material(node: &Node<'_>) -> Res<MaterialSpec> {
     let t = node.table()?;
     t.deny_unknown(keys::MATERIAL)?;

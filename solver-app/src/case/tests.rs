@@ -891,7 +891,7 @@ tangential_penalty_scale = 0.5
 relaxation = {{ normal = 0.2, tangential = 1 }}
 detection = "bvh"
 [[contact]]
-master = "cyl/a"
+master = "plane/a"
 slave = "cyl/b"
 algorithm = "segment-to-segment-nagata"
 relaxation = {{ tangential = 0.05 }}
@@ -992,46 +992,49 @@ algorithm = "pointwise"
     assert!(e.message.contains("[[contact]]"), "{e}");
     // a deformable body's patch in several pairs: explicit coupling, or
     // implicit against rigid bodies only; one coupling; no pair twice
+    let three = format!(
+        "{two}[[body]]\nname = \"ring\"\nmesh = {{ file = \"ring.msh\" }}\nmaterial = {{ model = \"linear-elastic\", E = 1, nu = 0.3 }}\n"
+    );
     let pair = |m: &str, s: &str| format!("[[contact]]\nmaster = \"{m}\"\nslave = \"{s}\"\n");
     let implicit = |m: &str, s: &str| pair(m, s) + "coupling = \"implicit\"\n";
     let c = parse(&format!(
-        "{two}{}{}",
+        "{three}{}{}",
         pair("plane/ymax", "cyl/a"),
-        pair("cyl/a", "cyl/b")
+        pair("cyl/a", "ring/b")
     ));
     assert_eq!(c.contacts.len(), 2);
     let c = parse(&format!(
-        "{two}{}{}",
+        "{three}{}{}",
         implicit("plane/ymax", "cyl/a"),
         implicit("plane/ymin", "cyl/a")
     ));
     assert_eq!(c.contacts.len(), 2);
     let e = fail(&format!(
-        "{two}{}{}",
+        "{three}{}{}",
         implicit("plane/ymax", "cyl/a"),
-        implicit("cyl/a", "cyl/b")
+        implicit("cyl/a", "ring/b")
     ));
     assert_eq!(e.key.as_deref(), Some("contact[1].master"));
     assert!(e.message.contains("already in contact[0]"), "{e}");
     assert!(e.message.contains("only against rigid bodies"), "{e}");
     let e = fail(&format!(
-        "{two}{}{}",
+        "{three}{}{}",
         pair("plane/ymax", "cyl/a"),
         implicit("plane/ymin", "cyl/a")
     ));
     assert_eq!(e.key.as_deref(), Some("contact[1].slave"));
     assert!(e.message.contains("same coupling"), "{e}");
     let e = fail(&format!(
-        "{two}{}{}",
+        "{three}{}{}",
         pair("plane/ymax", "cyl/a"),
         pair("cyl/a", "plane/ymax")
     ));
     assert_eq!(e.key.as_deref(), Some("contact[1].master"));
     assert!(e.message.contains("already a pair"), "{e}");
     let c = parse(&format!(
-        "{two}{}{}",
+        "{three}{}{}",
         pair("plane/ymax", "cyl/a"),
-        pair("plane/ymax", "cyl/b")
+        pair("plane/ymax", "ring/b")
     ));
     assert_eq!(c.contacts.len(), 2);
 }
@@ -1132,8 +1135,12 @@ fn never_panics_on_truncated_or_mangled_input() {
 type = "rigid-motion"
 translation = { table = [[0, [0, 0, 0]], [1, [0, -1, 0]]] }
 rotation = { axis = [0, 0, 1], origin = [0, 0, 0], angle = { table = [[0, 0], [1, 1.5]] } }
+[[body]]
+name = "floor"
+rigid = true
+mesh = { generator = "box", min = [0, -1, 0], max = [1, 0, 0.1], cells = [1, 1, 1] }
 [[contact]]
-master = "block/top"
+master = "floor/ymax"
 slave = "block/ymin"
 relaxation = { normal = 0.1, tangential = 0.1 }
 [output]

@@ -16,6 +16,8 @@ pub mod residual;
 pub mod segregated_operator;
 mod start;
 
+use std::ops::ControlFlow;
+
 use crate::case::{LinearMethod, SolverSettings, NEWTON_FINAL_ATTEMPT_ITERATIONS};
 use crate::contact_coupling::ContactSet;
 use crate::model::Body;
@@ -207,7 +209,7 @@ impl NewtonKrylovSolver {
         bodies: &mut [Body],
         contacts: &mut ContactSet,
         total: &mut NewtonInfo,
-        on_iteration: &mut dyn FnMut(usize, f64),
+        on_iteration: &mut dyn FnMut(usize, f64) -> ControlFlow<()>,
     ) -> Result<NewtonInfo, NewtonError> {
         let switch_after = self.may_switch().then_some(SWITCH_KRYLOV_ITERATIONS);
         let mut problem = ModelProblem {
@@ -237,6 +239,8 @@ impl NewtonKrylovSolver {
             }
             if r.iteration > 0 {
                 on_iteration(done + r.iteration, r.residual)
+            } else {
+                ControlFlow::Continue(())
             }
         });
         self.newton.release_krylov_pages();
@@ -250,6 +254,7 @@ impl NewtonKrylovSolver {
             Ok(i) => *i,
             Err(NewtonError::LineSearch { info, .. })
             | Err(NewtonError::Stagnated { info, .. })
+            | Err(NewtonError::Interrupted { info, .. })
             | Err(NewtonError::Preconditioner { info, .. }) => *info,
             Err(NewtonError::Start(_)) => NewtonInfo {
                 residual_evaluations: 1,
@@ -315,7 +320,7 @@ impl crate::nonlinear_solver::NonlinearSolver for NewtonKrylovSolver {
         &mut self,
         bodies: &mut [Body],
         contacts: &mut ContactSet,
-        on_iteration: &mut dyn FnMut(usize, f64),
+        on_iteration: &mut dyn FnMut(usize, f64) -> ControlFlow<()>,
     ) -> Result<IncrementInfo, SolveError> {
         self.begin_increment(bodies);
         self.first_iterate(bodies, contacts);
@@ -347,6 +352,7 @@ impl crate::nonlinear_solver::NonlinearSolver for NewtonKrylovSolver {
                         e.0
                     )))
                 }
+                Err(NewtonError::Interrupted { .. }) => break Err(SolveError::Interrupted),
                 Err(e) => break Err(SolveError::Nonlinear(e.to_string())),
                 Ok(i) if !i.converged => break Ok(false),
                 Ok(_) => {}

@@ -282,6 +282,42 @@ fn contact_names_unknown_body() {
     );
 }
 
+/// Contact between two patches of one body is refused (not a feature
+/// yet): the message names the `[[contact]]` and the slave's line.
+#[test]
+fn self_contact_is_refused() {
+    let text = edit("master = \"plane/ymax\"", "master = \"block/ymax\"");
+    let e = parse_err(&text);
+    check(
+        &e,
+        Some(line_of(&text, "slave = \"block/ymin\"")),
+        Some("contact[0].slave"),
+        "master \"block/ymax\" and slave \"block/ymin\" are patches of one body: self-contact is not supported",
+    );
+}
+
+/// A rigid body is not solved: its `material` may be left out (a
+/// deformable body's may not).
+#[test]
+fn a_rigid_body_needs_no_material() {
+    let rigid = "material = { model = \"linear-elastic\", E = 200.0, nu = 0.3 }\nrigid = true";
+    let text = edit(rigid, "rigid = true");
+    let c = parse_case(&text, Path::new("case.toml")).unwrap();
+    assert!(c.bodies[1].rigid);
+    assert_eq!(c.bodies[1].material, MaterialSpec::unused());
+    let text = edit(
+        "mesh = { generator = \"box\", min = [0, 0, 0], max = [1, 1, 0.1], cells = [4, 4, 1] }\nmaterial = { model = \"linear-elastic\", E = 200.0, nu = 0.3 }\n",
+        "mesh = { generator = \"box\", min = [0, 0, 0], max = [1, 1, 0.1], cells = [4, 4, 1] }\n",
+    );
+    let e = parse_err(&text);
+    check(
+        &e,
+        Some(line_of(&text, "[[body]]")),
+        Some("body[0].material"),
+        "missing required key `material`",
+    );
+}
+
 #[test]
 fn table_times_not_increasing() {
     let text = edit(

@@ -258,6 +258,83 @@ slave = "block/bottom"
     assert!(!out.contains("case is valid"), "{out}");
 }
 
+/// Contact between two patches of one body: exit 2 naming the contact,
+/// its line and "self-contact is not supported".
+#[test]
+fn self_contact_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = format!("{GOOD}[[contact]]\nmaster = \"block/xmax\"\nslave = \"block/xmin\"\n");
+    let line = case.lines().position(|l| l.contains("block/xmin")).unwrap() + 1;
+    expect_input_error(
+        dir.path(),
+        case.as_bytes(),
+        &[
+            &format!("case.toml:{line}: contact[0].slave"),
+            "self-contact is not supported",
+        ],
+    );
+}
+
+/// A rigid plate with no `material` and no condition: accepted, noted by
+/// `check` and in the log as held fixed, and the run is that of the same
+/// plate with a material and `displacement = [0, 0, 0]` to the last bit.
+/// The block, pushed 0.01 up against it (frictionless, implicit contact),
+/// carries less than the oedometric E ε A (1 − ν)/((1 + ν)(1 − 2ν)) and,
+/// with the penalty's penetration, more than half of E ε A.
+#[test]
+fn a_rigid_body_without_material_or_motion_is_held_fixed() {
+    let dir = tempfile::tempdir().unwrap();
+    let pushed = GOOD
+        .replace(
+            "[body.boundary.ymax]\ntype = \"displacement\"\nvalue = { table = [[0.0, [0, 0, 0]], [1.0, [0, -0.01, 0]]] }\n",
+            "",
+        )
+        .replace(
+            "[body.boundary.ymin]\ntype = \"displacement\"\nvalue = [0, 0, 0]",
+            "[body.boundary.ymin]\ntype = \"displacement\"\nvalue = { table = [[0.0, [0, 0, 0]], [1.0, [0, 0.01, 0]]] }",
+        );
+    assert!(pushed.contains("[0, 0.01, 0]") && !pushed.contains("ymax"));
+    let contact =
+        "[[contact]]\nmaster = \"plate/ymin\"\nslave = \"block/ymax\"\ncoupling = \"implicit\"\n";
+    let bare = RIGID_PLATE.replace(
+        "material = { model = \"linear-elastic\", E = 200.0, nu = 0.3 }\n",
+        "",
+    );
+    let case = format!("{pushed}{bare}{contact}");
+    // the `[[body]]` header just above the name (0-based index = 1-based line)
+    let body_line = case.lines().position(|l| l == "name = \"plate\"").unwrap();
+    let p = write(dir.path(), "case.toml", case.as_bytes());
+    let (code, out, err) = fvc(&["check", p.to_str().unwrap()]);
+    assert_eq!(code, 0, "{out}{err}");
+    let note = format!(
+        "case.toml:{body_line}: body[1]: body 'plate' is rigid and no patch of it has a \"displacement\" or \"rigid-motion\" condition: it is held fixed where it is"
+    );
+    assert!(out.contains(&note), "{out}");
+    let reaction = |sub: &str, case: &str| {
+        let d = dir.path().join(sub);
+        std::fs::create_dir_all(&d).unwrap();
+        let (code, res, err) = run_quietly(&d, case.as_bytes());
+        assert_eq!(code, 0, "{err}");
+        let log = std::fs::read_to_string(res.join("block/log.txt")).unwrap();
+        let (_, v) = read_summary(&res.join("block"));
+        let fy = v["patches"]["block/ymin"]["reaction_force"][1]
+            .as_f64()
+            .unwrap();
+        (fy, log.contains("held fixed where it is"))
+    };
+    let (fy, noted) = reaction("bare", &case);
+    assert!(noted);
+    let fixed = format!(
+        "{pushed}{RIGID_PLATE}[body.boundary.ymax]\ntype = \"displacement\"\nvalue = [0, 0, 0]\n{contact}"
+    );
+    let (fy_fixed, noted) = reaction("fixed", &fixed);
+    assert!(!noted);
+    assert_eq!(fy.to_bits(), fy_fixed.to_bits(), "{fy} vs {fy_fixed}");
+    let e_eps_a = 200.0 * 0.01;
+    let oedometric = e_eps_a * (1.0 - 0.3) / ((1.0 + 0.3) * (1.0 - 0.6));
+    assert!(fy > 0.5 * e_eps_a && fy < oedometric, "reaction {fy}");
+}
+
 /// Loads on a rigid body act on nothing (it is not solved), and a case of
 /// rigid bodies alone has nothing to solve: both are input errors.
 #[test]
@@ -1230,38 +1307,6 @@ fn surfaces_overlapping_beyond_the_search_are_refused() {
     let (_, v) = read_summary(&outdir.join("overlap"));
     let force = v["contacts"][0]["normal_force"].as_f64().unwrap();
     assert!(force > 7.0 && force < 8.3, "normal force {force}");
-}
-
-/// Self-contact: a body's own contact surface lies on its own cells, which
-/// is no overlap (the check compares different bodies only).
-#[test]
-fn self_contact_is_not_an_initial_overlap() {
-    let dir = tempfile::tempdir().unwrap();
-    let case = r#"title = "self"
-[time]
-end = 1.0
-steps = 1
-[[body]]
-name = "b"
-mesh = { generator = "box", min = [0, 0, 0], max = [1, 1, 0.1], cells = [10, 10, 1] }
-material = { model = "linear-elastic", E = 1000.0, nu = 0.3 }
-[body.boundary.ymin]
-type = "displacement"
-value = [0, 0, 0]
-[body.boundary.ymax]
-type = "displacement"
-value = [0, -0.01, 0]
-[body.boundary.zmin]
-type = "empty"
-[body.boundary.zmax]
-type = "empty"
-[[contact]]
-master = "b/xmin"
-slave = "b/xmax"
-"#;
-    let p = write(dir.path(), "self.toml", case.as_bytes());
-    let (code, _, err) = fvc(&["check", p.to_str().unwrap()]);
-    assert_eq!(code, 0, "{err}");
 }
 
 /// A time table that ends before `[time] end` holds its last value, as

@@ -6,5 +6,6 @@ mod case_format_doc;
 mod cli;
 mod examples;
 mod hdf5_output;
+mod interrupt;
 mod newton_residual;
 mod plot;

@@ -167,7 +167,10 @@ fn probe_exact_newton_step() {
     let mut nk = fv_nonlinear::NewtonKrylov::new(n, params);
     let mut p = solver.problem(&mut bodies, &mut contacts);
     let mut x = vec![0.0; n];
-    let r = nk.solve(&mut p, &mut x, &mut |r| eprintln!("{r:?}"));
+    let r = nk.solve(&mut p, &mut x, &mut |r| {
+        eprintln!("{r:?}");
+        std::ops::ControlFlow::Continue(())
+    });
     eprintln!("{r:?}");
     // the step to the exact solution, checked: F(x) after one step
     let mut f = vec![0.0; n];

@@ -136,7 +136,9 @@ value = [0, 0, 0]
         .assemble_and_factorise(&bodies, &case.solver.linear)
         .unwrap();
     let info = solver
-        .solve_increment(&mut bodies, &mut Default::default(), |_, _| {})
+        .solve_increment(&mut bodies, &mut Default::default(), |_, _| {
+            std::ops::ControlFlow::Continue(())
+        })
         .unwrap();
     assert!(info.converged, "not converged: {info:?}");
     let b = &bodies[0];

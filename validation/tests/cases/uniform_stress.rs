@@ -51,7 +51,9 @@ value = [10.0, 0.0, 0.0]
         .assemble_and_factorise(&bodies, &case.solver.linear)
         .unwrap();
     let info = solver
-        .solve_increment(&mut bodies, &mut Default::default(), |_, _| {})
+        .solve_increment(&mut bodies, &mut Default::default(), |_, _| {
+            std::ops::ControlFlow::Continue(())
+        })
         .unwrap();
     assert!(info.converged);
     let mut max_dev = 0.0f64;

@@ -5,5 +5,6 @@ mod case_errors;
 mod case_format_doc;
 mod cli;
 mod examples;
+mod fuzz_corpus;
 mod hdf5_output;
 mod newton_residual;

@@ -29,7 +29,7 @@ pub use error::MeshError;
 pub use extrude_plane::{FRONT_AND_BACK, PLANE_THICKNESS};
 pub use geometry::MeshGeometry;
 pub use gmsh::{read_gmsh, read_gmsh_bytes};
-pub use openfoam::{face_connected_regions, read_polymesh, select_body};
+pub use openfoam::{face_connected_regions, read_polymesh, read_polymesh_files, select_body};
 pub use poly_mesh::{polygon_area_vector, CellZone, Patch, PolyMesh};
 pub use quality::MeshQuality;
 pub use surface::{PointNormalWeighting, Surface, NO_FACE};

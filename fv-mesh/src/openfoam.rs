@@ -22,8 +22,35 @@ use crate::{CellZone, MeshError, Patch, PolyMesh, Vector};
 /// content error gives [`MeshError::Parse`] with the file and line.
 pub fn read_polymesh(dir: &Path) -> Result<PolyMesh, MeshError> {
     let dir = locate_polymesh_dir(dir);
+    parse_polymesh(&dir, |name| read_file(&dir, name))
+}
+
+/// [`read_polymesh`] of files held in memory: `file(name)` gives the
+/// content of `points`, `faces`, `owner`, `neighbour`, `boundary` and
+/// `cellZones` (`None`: there is no such file; only `cellZones` may be
+/// missing); `dir` names them in messages. The fuzz targets' entry point.
+pub fn read_polymesh_files<'a>(
+    dir: &Path,
+    file: impl Fn(&str) -> Option<&'a [u8]>,
+) -> Result<PolyMesh, MeshError> {
+    parse_polymesh(dir, |name| {
+        let path = dir.join(name);
+        match file(name) {
+            Some(bytes) => Ok((bytes.to_vec(), path)),
+            None => Err(MeshError::Io {
+                path,
+                source: std::io::ErrorKind::NotFound.into(),
+            }),
+        }
+    })
+}
+
+fn parse_polymesh(
+    dir: &Path,
+    read_file: impl Fn(&str) -> Result<(Vec<u8>, PathBuf), MeshError>,
+) -> Result<PolyMesh, MeshError> {
     let points = {
-        let (text, path) = read_file(&dir, "points")?;
+        let (text, path) = read_file("points")?;
         let mut lex = Lexer::new(&text, &path);
         lex.header()?;
         let (pts, _) = lex.list(|lex| lex.vector())?;
@@ -39,7 +66,7 @@ pub fn read_polymesh(dir: &Path) -> Result<PolyMesh, MeshError> {
     }
 
     let faces = {
-        let (text, path) = read_file(&dir, "faces")?;
+        let (text, path) = read_file("faces")?;
         let mut lex = Lexer::new(&text, &path);
         let header = lex.header()?;
         let faces = if header.class.as_deref() == Some("faceCompactList") {
@@ -93,7 +120,7 @@ pub fn read_polymesh(dir: &Path) -> Result<PolyMesh, MeshError> {
     let n_faces = faces.len();
 
     let (owner, owner_note_cells, owner_note_line) = {
-        let (text, path) = read_file(&dir, "owner")?;
+        let (text, path) = read_file("owner")?;
         let mut lex = Lexer::new(&text, &path);
         let header = lex.header()?;
         let (owner, line) = lex.list(|lex| lex.label(0, u32::MAX as i64 - 1))?;
@@ -116,7 +143,7 @@ pub fn read_polymesh(dir: &Path) -> Result<PolyMesh, MeshError> {
     };
 
     let neighbour = {
-        let (text, path) = read_file(&dir, "neighbour")?;
+        let (text, path) = read_file("neighbour")?;
         let mut lex = Lexer::new(&text, &path);
         lex.header()?;
         let mut index = 0usize;
@@ -179,6 +206,20 @@ pub fn read_polymesh(dir: &Path) -> Result<PolyMesh, MeshError> {
         .map(|&c| c as usize + 1)
         .max()
         .unwrap_or(0);
+    // a cell without faces is no cell, and the cell count sizes arrays
+    // (regions, zones): a label must not claim more than the faces bound
+    let face_sides = owner.len() + neighbour.len();
+    if n_cells > face_sides {
+        return Err(MeshError::Parse {
+            path: dir.join("owner"),
+            line: None,
+            message: format!(
+                "owner and neighbour address cell {} but their {face_sides} entries bound at \
+                 most {face_sides} cells: cell labels must number the cells from 0 without gaps",
+                n_cells - 1
+            ),
+        });
+    }
     if let (Some(note), Some(line)) = (owner_note_cells, owner_note_line) {
         if note != n_cells {
             let path = dir.join("owner");
@@ -193,7 +234,7 @@ pub fn read_polymesh(dir: &Path) -> Result<PolyMesh, MeshError> {
     }
 
     let patches = {
-        let (text, path) = read_file(&dir, "boundary")?;
+        let (text, path) = read_file("boundary")?;
         let mut lex = Lexer::new(&text, &path);
         lex.header()?;
         let (entries, _) = lex.list(|lex| lex.named_dict(&[]))?;
@@ -255,7 +296,7 @@ pub fn read_polymesh(dir: &Path) -> Result<PolyMesh, MeshError> {
         patches
     };
 
-    let cell_zones = match read_file(&dir, "cellZones") {
+    let cell_zones = match read_file("cellZones") {
         Err(MeshError::Io { source, .. }) if source.kind() == std::io::ErrorKind::NotFound => {
             Vec::new()
         }
@@ -427,6 +468,10 @@ struct Lexer<'a> {
     line: usize,
     peeked: Option<(Tok, usize)>,
     path: &'a Path,
+    /// Entries that uniform lists `N{value}` have expanded to so far: the
+    /// file's counts never size an allocation beyond a bound set by its
+    /// length (issue 44).
+    uniform_items: usize,
 }
 
 impl<'a> Lexer<'a> {
@@ -437,6 +482,7 @@ impl<'a> Lexer<'a> {
             line: 1,
             peeked: None,
             path,
+            uniform_items: 0,
         }
     }
 
@@ -811,12 +857,21 @@ impl<'a> Lexer<'a> {
             }
             Tok::Punct(b'{') if size.is_some() => {
                 let n = size.unwrap_or(0);
+                let before = self.uniform_items;
                 let v = item(self)?;
                 self.expect_punct(b'}', "after the value of a uniform list")?;
-                if n > self.s.len().saturating_mul(64).max(1 << 20) {
-                    return Err(
-                        self.error(Some(line), format!("uniform list of implausible size {n}"))
-                    );
+                // the value's own uniform items (a uniform face in a
+                // uniform face list) are copied n times
+                let each = (self.uniform_items - before).max(1);
+                self.uniform_items = before.saturating_add(n.saturating_mul(each));
+                if self.uniform_items > self.s.len().saturating_mul(8).max(1 << 20) {
+                    return Err(self.error(
+                        Some(line),
+                        format!(
+                            "uniform list of implausible size {n} (uniform lists may expand \
+                             to at most 8 entries per byte of the file)"
+                        ),
+                    ));
                 }
                 Ok((vec![v; n], Some(line)))
             }

@@ -453,6 +453,7 @@ fn time_intervals(t: &Table<'_>, node: &super::reader::Node<'_>) -> Res<TimeCont
     }
     let mut intervals = Vec::new();
     let mut t_prev = 0.0;
+    let mut steps = 0usize;
     for e in node.array()? {
         let pair = e.node().array()?;
         if pair.len() != 2 {
@@ -469,6 +470,11 @@ fn time_intervals(t: &Table<'_>, node: &super::reader::Node<'_>) -> Res<TimeCont
             )));
         }
         let n = pair[1].node().usize_min(1)?;
+        steps = usize::checked_add(steps, n).ok_or_else(|| {
+            pair[1]
+                .node()
+                .err("the intervals' increments add up to more than the largest integer")
+        })?;
         intervals.push((t1, n));
         t_prev = t1;
     }
@@ -487,7 +493,7 @@ fn time_intervals(t: &Table<'_>, node: &super::reader::Node<'_>) -> Res<TimeCont
     }
     Ok(TimeControl {
         end: t_prev,
-        steps: intervals.iter().map(|i| i.1).sum(),
+        steps,
         intervals,
     })
 }

@@ -5,6 +5,7 @@ mod case_errors;
 mod case_format_doc;
 mod cli;
 mod examples;
+mod fuzz_corpus;
 mod hdf5_output;
 mod interrupt;
 mod newton_residual;

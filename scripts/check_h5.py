@@ -15,6 +15,11 @@ a few values (attributes in full), then checks:
   - per patch: face_centres (n x 3), contact_pressure (n, >= 0),
     contact_traction (n x 3), gap (n), one n per patch;
   - /history (rows x columns, with a `columns` attribute) when present;
+  - /increments and /times when present: the k of every /time/<k> in the
+    order written (increasing) and their times, equal to the attributes;
+  - field datasets of files with that index (written since issue 45):
+    attributes units and location, components (their column names) on
+    those with columns;
   - with --increments N: exactly N increments.
 Exits 1 if anything is missing or inconsistent.
 """
@@ -140,6 +145,31 @@ def main():
                 key = f"{body}/{patch}"
                 if patch_faces.setdefault(key, n) != n:
                     problems.append(f"{p.name}: {n} faces, earlier increments had {patch_faces[key]}")
+
+    if "increments" in f or "times" in f:
+        ks = f["increments"][()] if "increments" in f else None
+        ts = f["times"][()] if "times" in f else None
+        if ks is None or ts is None:
+            problems.append("/increments and /times come together")
+        elif list(ks) != sorted(int(k) for k in steps) or len(ts) != len(ks):
+            problems.append(f"/increments {list(ks)[:5]}... does not list the {len(steps)} /time groups in order")
+        else:
+            for k, t in zip(ks, ts):
+                if f["time"][str(k)].attrs["time"] != t:
+                    problems.append(f"/times: increment {k} at {t}, its group says {f['time'][str(k)].attrs['time']}")
+    for k in steps[-1:] if "increments" in f else []:
+        for body in meshes:
+            if body not in f["time"][k]:
+                continue
+            b = f["time"][k][body]
+            fields = [b[n] for n in ("points", "displacement", "stress", "von_mises", "point_displacement") if n in b]
+            fields += [b[p][n] for p in set(b.keys()) - BODY_FIELDS for n in PATCH_FIELDS if n in b[p]]
+            for d in fields:
+                for a in ("units", "location"):
+                    if a not in d.attrs:
+                        problems.append(f"{d.name} lacks attribute {a}")
+                if d.ndim == 2 and len(d.attrs.get("components", [])) != d.shape[1]:
+                    problems.append(f"{d.name}: components do not name its {d.shape[1]} columns")
 
     if "history" in f:
         h = f["history"]

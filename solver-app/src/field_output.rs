@@ -1,14 +1,14 @@
 //! Adapts the solver's bodies and contacts to the HDF5/XDMF writer
 //! ([`crate::output`]): cell connectivity once, then per written increment
 //! the cell fields, point displacement (cell-to-point least squares) and the
-//! contact fields of every contact patch.
+//! contact fields of every contact patch, copied out and handed to the
+//! writer's thread ([`crate::background_writer`]).
 use std::path::Path;
 
+use crate::background_writer::{BackgroundWriter, OwnedBody, OwnedIncrement, OwnedPatch};
 use crate::contact_coupling::ContactSet;
 use crate::model::Body;
-use crate::output::{
-    BodyIncrement, CellMeshData, OutputError, PatchFaces, PatchIncrement, ResultsWriter,
-};
+use crate::output::{CellMeshData, OutputError, ResultsWriter};
 use fv_mesh::{CellToPoint, Vector};
 
 /// Per-body fields of one written increment, allocated for the write only
@@ -33,7 +33,7 @@ struct PatchBuffers {
 
 /// The results writer.
 pub struct FieldOutput {
-    writer: ResultsWriter,
+    writer: BackgroundWriter,
 }
 
 fn mesh_data(b: &Body) -> Result<CellMeshData, OutputError> {
@@ -59,7 +59,7 @@ impl FieldOutput {
             .zip(&data)
             .map(|(b, d)| (b.name.as_str(), d))
             .collect();
-        let writer = ResultsWriter::create(dir, title, &named)?;
+        let writer = BackgroundWriter::start(ResultsWriter::create(dir, title, &named)?)?;
         Ok(FieldOutput { writer })
     }
 
@@ -210,39 +210,33 @@ impl FieldOutput {
                 }
             }
         }
-        let incs: Vec<BodyIncrement> = bodies
+        let mut per_body: Vec<Vec<PatchBuffers>> = bodies.iter().map(|_| Vec::new()).collect();
+        for p in patches {
+            let bi = p.body;
+            per_body[bi].push(p);
+        }
+        let owned = bodies
             .iter()
-            .zip(&buffers)
-            .enumerate()
-            .map(|(bi, (b, buf))| BodyIncrement {
-                name: &b.name,
-                points: &buf.points,
-                displacement: &buf.displacement,
-                stress: &buf.stress,
-                plastic_strain: b.momentum.law.plastic_strain(),
-                point_displacement: &buf.point_displacement,
-                patches: patches
-                    .iter()
-                    .filter(|p| p.body == bi)
-                    .map(|p| {
-                        let r = b.mesh.patches[p.patch].faces();
-                        PatchIncrement {
-                            name: &b.mesh.patches[p.patch].name,
-                            faces: PatchFaces {
-                                offsets: &b.mesh.face_offsets[r.start..=r.end],
-                                connectivity: &b.mesh.face_points,
-                            },
-                            face_centres: &p.face_centres,
-                            contact_pressure: &p.pressure,
-                            contact_traction: &p.traction,
-                            gap: &p.gap,
-                        }
-                    })
-                    .collect(),
+            .zip(buffers)
+            .zip(per_body)
+            .map(|((b, buf), patches)| OwnedBody {
+                name: b.name.clone(),
+                points: buf.points,
+                displacement: buf.displacement,
+                stress: buf.stress,
+                plastic_strain: b.momentum.law.plastic_strain().map(<[f64]>::to_vec),
+                point_displacement: buf.point_displacement,
+                patches: patches.into_iter().map(|p| owned_patch(b, p)).collect(),
             })
             .collect();
-        self.writer
-            .write_increment(k, time, outer, residual, converged, &incs)
+        self.writer.write_increment(OwnedIncrement {
+            k,
+            time,
+            outer_iterations: outer,
+            residual,
+            converged,
+            bodies: owned,
+        })
     }
 
     /// Appends one row to `/history`.
@@ -250,8 +244,25 @@ impl FieldOutput {
         self.writer.write_history(columns, row)
     }
 
-    /// Closes the file.
+    /// Waits for the writes under way and closes the file.
     pub fn close(self) -> Result<(), OutputError> {
         self.writer.close()
+    }
+}
+
+/// A contact patch's fields with its faces (rebased to start at 0).
+fn owned_patch(b: &Body, p: PatchBuffers) -> OwnedPatch {
+    let r = b.mesh.patches[p.patch].faces();
+    let offsets = &b.mesh.face_offsets[r.start..=r.end];
+    let first = offsets[0];
+    let last = offsets[offsets.len() - 1];
+    OwnedPatch {
+        name: b.mesh.patches[p.patch].name.clone(),
+        offsets: offsets.iter().map(|&o| o - first).collect(),
+        connectivity: b.mesh.face_points[first as usize..last as usize].to_vec(),
+        face_centres: p.face_centres,
+        pressure: p.pressure,
+        traction: p.traction,
+        gap: p.gap,
     }
 }

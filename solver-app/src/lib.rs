@@ -11,6 +11,7 @@
 #![warn(missing_docs)]
 
 pub mod anderson;
+pub mod background_writer;
 pub mod case;
 pub mod check;
 pub mod contact_coupling;

@@ -32,6 +32,7 @@
 //! w.close()?;
 //! # Ok(()) }
 //! ```
+mod datasets;
 mod hdf5_writer;
 mod xdmf;
 

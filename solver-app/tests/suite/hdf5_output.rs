@@ -512,7 +512,7 @@ fn two_body_results_read_back_exactly() {
     );
     let mut top = f.member_names().unwrap();
     top.sort();
-    assert_eq!(top, ["history", "mesh", "time"]);
+    assert_eq!(top, ["history", "increments", "mesh", "time", "times"]);
 
     // meshes
     for (name, mesh, code, topo_len) in [("block", &hex, 12u8, 2 * 9), ("tets", &tet, 10, 5 * 5)] {
@@ -568,6 +568,41 @@ fn two_body_results_read_back_exactly() {
     for k in 1..=2 {
         check_increment(&f, &hex, &tet, k);
     }
+    // the index of the increments in written order and their times
+    assert_eq!(read_u64(&f, "increments"), (vec![2], vec![1, 2]));
+    assert_eq!(read_f64(&f, "times"), (vec![2], TIMES[..2].to_vec()));
+    // fields: compressed by HDF5's own filters, units and columns named
+    let stress = f.dataset("time/1/block/stress").unwrap();
+    assert_eq!(stress.chunk(), Some(vec![2, 6]));
+    assert_eq!(
+        stress.filters(),
+        [
+            hdf5::filters::Filter::shuffle(),
+            hdf5::filters::Filter::deflate(1)
+        ]
+    );
+    let text = |ds: &hdf5::Dataset, name: &str| {
+        ds.attr(name)
+            .unwrap()
+            .read_scalar::<VarLenUnicode>()
+            .unwrap()
+            .to_string()
+    };
+    let columns = |ds: &hdf5::Dataset| -> Vec<String> {
+        let c = ds.attr("components").unwrap();
+        let c = c.read_raw::<VarLenUnicode>().unwrap();
+        c.iter().map(|s| s.to_string()).collect()
+    };
+    assert_eq!(text(&stress, "units"), "force/length^2");
+    assert_eq!(text(&stress, "location"), "cell");
+    assert_eq!(columns(&stress), ["xx", "yy", "zz", "xy", "yz", "xz"]);
+    let centres = f.dataset("time/2/tets/bottom/face_centres").unwrap();
+    assert_eq!(text(&centres, "units"), "length");
+    assert_eq!(text(&centres, "location"), "face");
+    assert_eq!(columns(&centres), ["x", "y", "z"]);
+    let gap = f.dataset("time/2/tets/bottom/gap").unwrap();
+    assert_eq!(text(&gap, "units"), "length");
+    assert!(!gap.attr_names().unwrap().contains(&"components".to_owned()));
 
     // history
     let h = f.dataset("history").unwrap();

@@ -144,6 +144,44 @@ fn check_one_cell_thick(
     }
 }
 
+/// Patches without a condition that together hold two faces of every cell
+/// — one patch (Gmsh's `frontAndBack`) or two (a box's `zmin`, `zmax`):
+/// the front and back of a mesh one cell thick (a 2-D model) left
+/// traction-free, which makes the body a 3-D slab one cell thick.
+fn unlisted_front_and_back(
+    mesh: &PolyMesh,
+    patch_specs: &[Option<BoundarySpec>],
+) -> Option<String> {
+    let n = mesh.n_cells;
+    let free: Vec<usize> = (0..mesh.patches.len())
+        .filter(|&p| patch_specs[p].is_none())
+        .filter(|&p| mesh.patches[p].size == n || mesh.patches[p].size == 2 * n)
+        .collect();
+    let mut count = vec![0u8; n];
+    let mut covers = |ps: &[usize]| {
+        count.fill(0);
+        for &p in ps {
+            for f in mesh.patches[p].faces() {
+                let c = mesh.owner[f] as usize;
+                count[c] = count[c].saturating_add(1);
+            }
+        }
+        count.iter().all(|&k| k == 2)
+    };
+    let name = |p: usize| format!("'{}'", mesh.patches[p].name);
+    for (i, &p) in free.iter().enumerate() {
+        if mesh.patches[p].size == 2 * n && covers(&[p]) {
+            return Some(format!("patch {}", name(p)));
+        }
+        for &q in &free[i + 1..] {
+            if mesh.patches[p].size == n && mesh.patches[q].size == n && covers(&[p, q]) {
+                return Some(format!("patches {} and {}", name(p), name(q)));
+            }
+        }
+    }
+    None
+}
+
 /// One body of the case.
 #[derive(Debug)]
 pub struct Body {
@@ -717,6 +755,13 @@ fn build_body(
         // refresh_conditions: no motion is the identity
         let msg = format!(
             "body '{}' is rigid and no patch of it has a \"displacement\" or \"rigid-motion\" condition: it is held fixed where it is",
+            spec.name
+        );
+        setup_notes.push(src.error(&format!("body[{bi}]"), msg).to_string());
+    }
+    if let (false, Some(which)) = (spec.rigid, unlisted_front_and_back(&mesh, &patch_specs)) {
+        let msg = format!(
+            "body '{}', {which}: the front and back faces of every cell (a mesh one cell thick) with no condition, traction-free, so the body is a 3-D slab; for a 2-D (plane strain) model give the front and back type = \"empty\"",
             spec.name
         );
         setup_notes.push(src.error(&format!("body[{bi}]"), msg).to_string());

@@ -730,6 +730,31 @@ fn a_stalled_explicit_coupling_is_switched_within_about_a_thousand_iterations() 
     assert!((fn_ / lame - 1.0).abs() < 2e-3, "{fn_} against Lamé {lame}");
 }
 
+/// A mesh one cell thick whose front and back have no condition is a 3-D
+/// slab (traction-free faces), not a 2-D model: `fvc check` says so, and
+/// says nothing once they are `empty`.
+#[test]
+fn check_notes_a_one_cell_thick_mesh_left_traction_free() {
+    let dir = tempfile::tempdir().unwrap();
+    let slab = GOOD.replace("cells = [4, 4, 4]", "cells = [4, 4, 1]");
+    let p = write(dir.path(), "case.toml", slab.as_bytes());
+    let (code, out, err) = fvc(&["check", p.to_str().unwrap()]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(
+        out.contains(
+            "body 'block', patches 'zmin' and 'zmax': the front and back faces of every cell"
+        ) && out.contains("give the front and back type = \"empty\""),
+        "{out}"
+    );
+    let plane = format!(
+        "{slab}[body.boundary.zmin]\ntype = \"empty\"\n[body.boundary.zmax]\ntype = \"empty\"\n"
+    );
+    let p = write(dir.path(), "case.toml", plane.as_bytes());
+    let (code, out, err) = fvc(&["check", p.to_str().unwrap()]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(!out.contains("3-D slab"), "{out}");
+}
+
 #[test]
 fn check_reports_a_benchmark_polymesh() {
     let shared = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/benchmarks");

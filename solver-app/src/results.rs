@@ -401,6 +401,40 @@ impl SummaryFigures {
             .collect();
         SummaryFigures { patches, contacts }
     }
+
+    /// The physics at the end of the run, a line per reported patch and
+    /// per contact, as the log's final block (the figures of
+    /// `summary.json`).
+    pub fn report(&self) -> String {
+        let num = |v: &serde_json::Value| v.as_f64().unwrap_or(f64::NAN);
+        let vec3 = |v: &serde_json::Value| {
+            let c: Vec<String> = (0..3).map(|i| format!("{:.4e}", num(&v[i]))).collect();
+            format!("({})", c.join(", "))
+        };
+        let mut lines = Vec::new();
+        for (name, p) in &self.patches {
+            lines.push(format!(
+                "  {name}: reaction force {}",
+                vec3(&p["reaction_force"])
+            ));
+        }
+        for c in &self.contacts {
+            lines.push(format!(
+                "  contact {} – {}: normal force {:.4e}, tangential force {}, peak pressure {:.4e}, contact area {:.4e}, largest penetration {:.3e}",
+                c["master"].as_str().unwrap_or("?"),
+                c["slave"].as_str().unwrap_or("?"),
+                num(&c["normal_force"]),
+                vec3(&c["tangential_force"]),
+                num(&c["max_pressure"]),
+                num(&c["contact_area"]),
+                num(&c["max_penetration"]),
+            ));
+        }
+        if lines.is_empty() {
+            return String::new();
+        }
+        format!("at the last increment written:\n{}", lines.join("\n"))
+    }
 }
 
 /// Writes `summary.json` (atomically: temp file + rename).

@@ -721,6 +721,10 @@ fn run_case_noting(
             figures = SummaryFigures::of(&bodies, &contacts);
         }
         write_summary(d, &summary, &figures).map_err(io_err)?;
+        let physics = figures.report();
+        if !physics.is_empty() {
+            log.info(&physics);
+        }
         match interrupted {
             Some(sig) => log.warn(&format!(
                 "interrupted by {} after increment {}/{} (t = {:.6e}): results so far in {}",

@@ -728,6 +728,9 @@ fn a_stalled_explicit_coupling_is_switched_within_about_a_thousand_iterations() 
     let lame = 0.3469 * 10.0 * std::f64::consts::FRAC_PI_2 * 1.4 * 0.1;
     let fn_ = v["contacts"][0]["normal_force"].as_f64().unwrap();
     assert!((fn_ / lame - 1.0).abs() < 2e-3, "{fn_} against Lamé {lame}");
+    // the log's final block gives the same figure
+    let line = format!("contact outer/inner – inner/outer: normal force {fn_:.4e}");
+    assert!(err.contains(&line), "{line} not in:\n{err}");
 }
 
 /// A mesh one cell thick whose front and back have no condition is a 3-D

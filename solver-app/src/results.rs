@@ -408,7 +408,10 @@ impl SummaryFigures {
     pub fn report(&self) -> String {
         let num = |v: &serde_json::Value| v.as_f64().unwrap_or(f64::NAN);
         let vec3 = |v: &serde_json::Value| {
-            let c: Vec<String> = (0..3).map(|i| format!("{:.4e}", num(&v[i]))).collect();
+            // + 0.0: no "-0.0000e0" for a component that is zero
+            let c: Vec<String> = (0..3)
+                .map(|i| format!("{:.4e}", num(&v[i]) + 0.0))
+                .collect();
             format!("({})", c.join(", "))
         };
         let mut lines = Vec::new();

@@ -3,7 +3,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-const GOOD: &str = r#"title = "block"
+pub(crate) const GOOD: &str = r#"title = "block"
 [time]
 end = 1.0
 steps = 2
@@ -29,7 +29,7 @@ mesh = { generator = "box", min = [0, 1, 0], max = [1, 1.2, 1], cells = [2, 1, 2
 material = { model = "linear-elastic", E = 200.0, nu = 0.3 }
 "#;
 
-fn fvc(args: &[&str]) -> (i32, String, String) {
+pub(crate) fn fvc(args: &[&str]) -> (i32, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_fvc"))
         .args(args)
         .output()

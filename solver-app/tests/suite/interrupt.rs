@@ -8,23 +8,11 @@ use std::time::{Duration, Instant};
 
 /// The block of `cli.rs` compressed in 100,000 increments: far more than
 /// any test waits for, so the signal finds it mid-run.
-const LONG: &str = r#"title = "block"
-[time]
-end = 1.0
-steps = 100000
-[solver]
-tolerance = 1e-6
-[[body]]
-name = "block"
-mesh = { generator = "box", min = [0, 0, 0], max = [1, 1, 1], cells = [4, 4, 4] }
-material = { model = "linear-elastic", E = 200.0, nu = 0.3 }
-[body.boundary.ymin]
-type = "displacement"
-value = [0, 0, 0]
-[body.boundary.ymax]
-type = "displacement"
-value = { table = [[0.0, [0, 0, 0]], [1.0, [0, -0.01, 0]]] }
-"#;
+fn long_case() -> String {
+    let case = crate::cli::GOOD.replace("steps = 2\n", "steps = 100000\n");
+    assert!(case.contains("steps = 100000"));
+    case
+}
 
 /// Data rows of `history.csv` (0 while it does not exist).
 fn history_rows(res: &Path) -> usize {
@@ -33,12 +21,12 @@ fn history_rows(res: &Path) -> usize {
         .unwrap_or(0)
 }
 
-/// Runs [`LONG`], sends `signal` once 3 increments are written, and
+/// Runs [`long_case`], sends `signal` once 3 increments are written, and
 /// checks what the run left.
 fn interrupted_run(signal: i32, name: &str, exit: i32) {
     let dir = tempfile::tempdir().unwrap();
     let case = dir.path().join("case.toml");
-    std::fs::write(&case, LONG).unwrap();
+    std::fs::write(&case, long_case()).unwrap();
     let out = dir.path().join("out");
     let res = out.join("block");
     let mut child = Command::new(env!("CARGO_BIN_EXE_fvc"))

@@ -2,7 +2,6 @@
 //! a plane-strain block), the data they are drawn from checked against the
 //! run's own numbers, an interrupted run, and folders that are not results.
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 use solver_app::plot::pressure::{Abscissa, PatchPressure};
 use solver_app::plot::{History, ResultsFolder};
@@ -41,17 +40,7 @@ slave = "base/ymax"
 coupling = "implicit"
 "#;
 
-fn fvc(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_fvc"))
-        .args(args)
-        .output()
-        .expect("fvc runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+use crate::cli::fvc;
 
 /// Runs [`PUNCH`] in `dir`; returns its results folder.
 fn run_punch(dir: &Path) -> PathBuf {

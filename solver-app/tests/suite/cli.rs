@@ -660,58 +660,33 @@ fn explicit_coupling_that_fails_is_redone_implicitly() {
     assert!(v.get("coupling_switched").is_none(), "{summary}");
 }
 
-/// Issue 46's two-cylinder pair (thesis §4.4.1; 8 cells through each
+/// Issue 46's two-cylinder pair: the shipped concentric-cylinders case (thesis §4.4.1) with 8 cells through each
 /// wall, 160 and 120 faces along the interface) with penalty ×10 and
 /// explicit coupling, by the segregated method: the explicit coupling
 /// stalls (smallest residual 9.1e-3 at outer iteration 433, then a limit
 /// cycle at 1e-3), and used to switch to implicit coupling only at
 /// `max_outer`, after 50,000 outer iterations and 287 s.
-const TWO_TUBES_EXPLICIT: &str = r#"title = "tubes"
-[time]
-end = 1.0
-steps = 1
-[solver]
-nonlinear = "segregated"
-tolerance = 1e-7
-max_outer = 50000
-[[body]]
-name = "inner"
-mesh = { generator = "annulus", r_inner = 1.0, r_outer = 1.4, theta0 = 0, theta1 = 90, z0 = 0, z1 = 0.1, cells = [8, 160, 1] }
-material = { model = "linear-elastic", E = 1000.0, nu = 0.3 }
-[body.boundary.inner]
-type = "pressure"
-value = 10.0
-[body.boundary.start]
-type = "symmetry"
-[body.boundary.end]
-type = "symmetry"
-[body.boundary.zmin]
-type = "empty"
-[body.boundary.zmax]
-type = "empty"
-[[body]]
-name = "outer"
-mesh = { generator = "annulus", r_inner = 1.4, r_outer = 2.0, theta0 = 0, theta1 = 90, z0 = 0, z1 = 0.1, cells = [8, 120, 1] }
-material = { model = "linear-elastic", E = 1000.0, nu = 0.3 }
-[body.boundary.start]
-type = "symmetry"
-[body.boundary.end]
-type = "symmetry"
-[body.boundary.zmin]
-type = "empty"
-[body.boundary.zmax]
-type = "empty"
-[[contact]]
-master = "outer/inner"
-slave = "inner/outer"
-coupling = "explicit"
-penalty_scale = 10
-"#;
+fn two_tubes_explicit() -> String {
+    let shipped = include_str!("../../../validation/cases/concentric-cylinders/case.toml");
+    let case = shipped
+        .replace("title = \"concentric-cylinders\"", "title = \"tubes\"")
+        .replace("[solver]\n", "[solver]\nnonlinear = \"segregated\"\n")
+        .replace("max_outer = 20000", "max_outer = 50000")
+        .replace("cells = [10, 40, 1]", "cells = [8, 160, 1]")
+        .replace("cells = [12, 30, 1]", "cells = [8, 120, 1]")
+        .replace(
+            "coupling = \"implicit\"",
+            "coupling = \"explicit\"\npenalty_scale = 10",
+        );
+    assert_eq!(case.matches("[8, 1").count(), 2, "{case}");
+    assert!(case.contains("max_outer = 50000") && case.contains("penalty_scale = 10"));
+    case
+}
 
 #[test]
 fn a_stalled_explicit_coupling_is_switched_within_about_a_thousand_iterations() {
     let dir = tempfile::tempdir().unwrap();
-    let (code, outdir, err) = run_quietly(dir.path(), TWO_TUBES_EXPLICIT.as_bytes());
+    let (code, outdir, err) = run_quietly(dir.path(), two_tubes_explicit().as_bytes());
     assert_eq!(code, 0, "{err}");
     assert!(
         err.contains("explicit coupling stalled")

@@ -661,7 +661,7 @@ fn explicit_coupling_that_fails_is_redone_implicitly() {
 }
 
 /// Issue 46's two-cylinder pair: the shipped concentric-cylinders case (thesis §4.4.1) with 8 cells through each
-/// wall, 160 and 120 faces along the interface) with penalty ×10 and
+/// wall, 160 and 120 faces along the interface, penalty ×10 and
 /// explicit coupling, by the segregated method: the explicit coupling
 /// stalls (smallest residual 9.1e-3 at outer iteration 433, then a limit
 /// cycle at 1e-3), and used to switch to implicit coupling only at

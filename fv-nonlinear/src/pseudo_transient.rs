@@ -106,6 +106,15 @@ pub struct PseudoTransientParams {
     /// most `initial`) rather than at `initial`: the halvings from
     /// `initial` are spent once.
     pub reentry_factor: f64,
+    /// A Newton step whose stiffness along itself (δᵀ(−J)δ / δᵀDδ, with
+    /// its noise) is below this fraction of the stiffest Newton step of
+    /// the solve, and which the line search had to shorten, is taken
+    /// along a near-singular mode of J that the residual does not follow:
+    /// it is refused and the continuation switches on at
+    /// [`Self::soft_shift`] × that stiffest step (0: never).
+    pub soft_step: f64,
+    /// See `soft_step`.
+    pub soft_shift: f64,
 }
 
 impl Default for PseudoTransientParams {
@@ -120,6 +129,8 @@ impl Default for PseudoTransientParams {
             negative_curvature_margin: 4.0,
             newton_fraction: 0.1,
             reentry_factor: 10.0,
+            soft_step: 1e-2,
+            soft_shift: 0.1,
         }
     }
 }
@@ -171,6 +182,18 @@ impl PseudoTransient {
             return false;
         }
         self.sigma = next;
+        self.rescues += 1;
+        true
+    }
+
+    /// Switches the continuation on at `sigma` (or keeps a larger σ) after
+    /// a soft Newton step ([`PseudoTransientParams::soft_step`]); false
+    /// when `sigma` is not positive and finite or beyond the largest.
+    pub fn rescue_at(&mut self, sigma: f64) -> bool {
+        if !(sigma > 0.0 && sigma <= self.params.max) {
+            return false;
+        }
+        self.sigma = self.sigma.max(sigma);
         self.rescues += 1;
         true
     }
@@ -240,6 +263,19 @@ mod tests {
         });
         assert!(q.rescue() && q.rescue());
         assert!(!q.rescue());
+    }
+
+    #[test]
+    fn a_soft_step_switches_the_shift_on_at_the_given_value() {
+        let mut p = PseudoTransient::new(PseudoTransientParams::default());
+        assert!(!p.rescue_at(0.0) && !p.rescue_at(f64::NAN) && !p.rescue_at(1e5));
+        assert_eq!((p.sigma(), p.rescues), (0.0, 0));
+        assert!(p.rescue_at(3e-4));
+        assert_eq!((p.sigma(), p.rescues), (3e-4, 1));
+        // a larger σ already on is kept
+        assert!(p.rescue());
+        assert!(p.rescue_at(1e-4));
+        assert!((p.sigma() - 3e-3).abs() < 1e-15);
     }
 
     #[test]

@@ -207,3 +207,77 @@ fn penalty_contact_active_set_settles_in_a_few_newton_iterations() {
     let r = f.iter().map(|v| v * v).sum::<f64>().sqrt();
     assert!(r <= 1e-8 * p.residual_reference() * 1.01, "{r}");
 }
+
+/// F(x) = b − x, whose every Newton step the problem trusts only to
+/// `limit` of its length (as open contact faces bound a step): the
+/// residual falls by the factor 1 − limit per step, a creep.
+struct TrustedFraction {
+    b: Vec<f64>,
+    limit: f64,
+}
+
+impl NonlinearProblem for TrustedFraction {
+    fn len(&self) -> usize {
+        self.b.len()
+    }
+    fn residual(&mut self, x: &[f64], f: &mut [f64], _: Frozen) -> Result<(), Inadmissible> {
+        for ((f, b), x) in f.iter_mut().zip(&self.b).zip(x) {
+            *f = b - x;
+        }
+        Ok(())
+    }
+    fn residual_reference(&self) -> f64 {
+        1.0
+    }
+    fn typical_size(&self) -> f64 {
+        1.0
+    }
+    fn step_limit(&self, _: &[f64], _: &[f64]) -> f64 {
+        self.limit
+    }
+    fn prepare_preconditioner(&mut self, _: &[f64], _: Option<usize>) -> Result<(), Inadmissible> {
+        Ok(())
+    }
+    fn precondition(&mut self, r: &[f64], z: &mut [f64]) {
+        z.copy_from_slice(r);
+    }
+}
+
+#[test]
+fn a_creeping_solve_stops_once_its_rate_cannot_reach_the_tolerance() {
+    let solve = |limit: f64, window: usize| {
+        let mut p = TrustedFraction {
+            b: vec![1.0, -2.0, 0.5],
+            limit,
+        };
+        let mut x = vec![0.0; 3];
+        let params = NewtonParams {
+            tolerance: 1e-8,
+            max_iterations: 50,
+            rate_abort_window: window,
+            pseudo_transient: None,
+            ..Default::default()
+        };
+        NewtonKrylov::new(3, params)
+            .solve(&mut p, &mut x, &mut |_| std::ops::ControlFlow::Continue(()))
+    };
+    // 2 % per step: 0.98^k reaches 1e-8 only after 912 steps; stopped as
+    // soon as the window of 10 steps has measured that
+    match solve(0.02, 10) {
+        Err(fv_nonlinear::NewtonError::Stagnated {
+            iteration, steps, ..
+        }) => assert_eq!((iteration, steps), (10, 10)),
+        other => panic!("{other:?}"),
+    }
+    // without the window it runs out of its 50 iterations, unconverged
+    let info = solve(0.02, 0).unwrap();
+    assert!(!info.converged && info.iterations == 50, "{info:?}");
+    let start = 5.25f64.sqrt(); // ‖b‖
+    assert!(
+        (info.residual / (start * 0.98f64.powi(50)) - 1.0).abs() < 1e-6,
+        "{info:?}"
+    );
+    // 70 % per step (0.3^k): 16 steps, not stopped
+    let info = solve(0.7, 10).unwrap();
+    assert!(info.converged && info.iterations == 16, "{info:?}");
+}

@@ -97,6 +97,7 @@ impl NewtonKrylovSolver {
         let attempt_params = newton_params(settings);
         let final_attempt_params = NewtonParams {
             stall_abort_iterations: 0,
+            rate_abort_window: 0,
             max_iterations: if settings.max_outer_given {
                 settings.max_outer
             } else {

@@ -488,9 +488,23 @@ fn run_case_noting(
                     total.converged &= info.converged;
                     let go_on = info.converged
                         || case.solver.on_nonconvergence == OnNonConvergence::Continue;
+                    if !go_on && t0 > t_prev {
+                        // under `abort`, after converged sub-steps: back to
+                        // the last of them, which the results report (as
+                        // after an error), not the unconverged iterate
+                        for b in bodies.iter_mut() {
+                            b.restore_start();
+                        }
+                        contacts.restore_start();
+                        break Err(SolveError::Nonlinear(format!(
+                            "sub-step t = {t0:.6e} → {t1:.6e} did not converge in {} outer iterations ({})",
+                            info.outer_iterations,
+                            info.shortfall(case.solver.tolerance)
+                        )));
+                    }
                     if t1 == t || !go_on {
-                        // the fields are those of t1: an unconverged
-                        // sub-step under `abort` is reported at its own time
+                        // the fields are those of t1: an unconverged step
+                        // under `abort` is reported at its own time
                         break Ok((total, t1));
                     }
                     if !info.converged {

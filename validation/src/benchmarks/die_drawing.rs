@@ -115,11 +115,22 @@ pub enum CylinderMesh {
 /// 13.9 %. Two converged states of the same step: the master surface ends
 /// at that corner, and which one is reached depends on the path.
 pub fn run(mesh: CylinderMesh, end: f64, swapped: bool) -> DieRun {
+    run_edited(mesh, end, swapped, |text| text)
+}
+
+/// [`run`] with the case text changed by `edit` first (settings probed).
+pub fn run_edited(
+    mesh: CylinderMesh,
+    end: f64,
+    swapped: bool,
+    edit: impl Fn(String) -> String,
+) -> DieRun {
     let cylinder = match mesh {
         CylinderMesh::Benchmark => "cylinder.msh",
         CylinderMesh::Fine => "cylinder-fine.msh",
     };
-    let (dir, mut text) = read_case_on_mesh("die-drawing", "case.toml", "cylinder.msh", cylinder);
+    let (dir, text) = read_case_on_mesh("die-drawing", "case.toml", "cylinder.msh", cylinder);
+    let mut text = edit(text);
     if swapped {
         text = swap_master_slave(&text, "die/contact", "cylinder/outer")
             .replace("[solver]\n", "[solver]\nnonlinear = \"segregated\"\n");

@@ -61,6 +61,38 @@ pub fn pinned_segregated(text: &str) -> String {
     text.replacen("[solver]\n", "[solver]\nnonlinear = \"segregated\"\n", 1)
 }
 
+/// The keys a case author tunes per case (issue 46): contact coupling,
+/// penalty scale, relaxation, Rhie–Chow factor, predictor and outer
+/// iteration cap. A case without them runs on the defaults a new user
+/// gets.
+pub const TUNING_KEYS: [&str; 6] = [
+    "coupling",
+    "penalty_scale",
+    "relaxation",
+    "rhie_chow",
+    "predictor",
+    "max_outer",
+];
+
+/// The case text without its tuning keys ([`TUNING_KEYS`]): every line
+/// that assigns one of them, in whatever table, is dropped (the shipped
+/// cases give each on a line of its own).
+pub fn strip_tuning_keys(text: &str) -> String {
+    let assigns = |line: &str, key: &str| {
+        line.trim_start()
+            .strip_prefix(key)
+            .is_some_and(|rest| rest.trim_start().starts_with('='))
+    };
+    let mut out = String::with_capacity(text.len());
+    for line in text.lines() {
+        if !TUNING_KEYS.iter().any(|k| assigns(line, k)) {
+            out.push_str(line);
+            out.push('\n');
+        }
+    }
+    out
+}
+
 /// The case text with the `[[contact]]` surfaces `master` and `slave`
 /// (`"<body>/<patch>"`) exchanged.
 pub fn swap_master_slave(text: &str, master: &str, slave: &str) -> String {

@@ -164,7 +164,13 @@ fn axis_stress(
 
 /// Runs the variant with the block as master or (`swapped`) as slave.
 pub fn run(variant: Variant, swapped: bool) -> SphereBlock {
-    let (dir, mut text) = read_case("sphere-block", variant.file());
+    run_edited(variant, swapped, |text| text)
+}
+
+/// [`run`] with the case text changed by `edit` first (settings probed).
+pub fn run_edited(variant: Variant, swapped: bool, edit: impl Fn(String) -> String) -> SphereBlock {
+    let (dir, text) = read_case("sphere-block", variant.file());
+    let mut text = edit(text);
     if swapped {
         text = swap_master_slave(&text, variant.block_surface(), "sphere/curved");
     }

@@ -29,3 +29,4 @@ mod sphere_block;
 mod twisting_blocks;
 mod twisting_hemisphere;
 mod uniform_stress;
+mod without_tuning_keys;

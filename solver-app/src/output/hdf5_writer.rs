@@ -18,7 +18,9 @@ use std::path::{Path, PathBuf};
 use hdf5::types::VarLenUnicode;
 use hdf5::{Dataset, File, Group, H5Type, Location};
 
-use super::xdmf::{self, BodyGrid, IncrementRecord, PatchGrid};
+use super::face_cells::face_cells;
+use super::xdmf;
+use super::xdmf_document::{self, BodyGrid, IncrementRecord, PatchGrid};
 use super::{von_mises, BodyIncrement, CellMeshData, OutputError, PatchIncrement};
 
 /// Names a patch may not take: they are datasets or groups of
@@ -53,7 +55,11 @@ const INDEX_CHUNK: usize = 256;
 /// /mesh/<body>/cells/polyhedron_faces/{cell_offsets,offsets,connectivity}   + only with type 42
 /// /mesh/<body>/xdmf/topology          + XDMF Mixed array (i64); attr n_cells = cells shown
 /// /mesh/<body>/xdmf/cell_map          + mesh cell of every shown cell (only with type 42)
+/// /mesh/<body>/xdmf/{block,zero,zero_vector,nan}  + per shown cell: the body's `block` number and
+///                                     the constants the XDMF gives its cells for the patch fields
 /// /mesh/<body>/patches/<patch>/{offsets,connectivity,xdmf_topology}  + patch faces over body points
+/// /mesh/<body>/patches/<patch>/cells  + the mesh cell each face bounds
+/// /mesh/<body>/patches/<patch>/{block,zero}  + per face: the patch's `block` number, 0
 /// /time/<k>                           attrs: time (f64), outer_iterations (u64), residual (f64), converged (bool)
 /// /time/<k>/<body>/points             (n_points×3, current)
 /// /time/<k>/<body>/displacement       (n_cells×3)
@@ -63,6 +69,7 @@ const INDEX_CHUNK: usize = 256;
 /// /time/<k>/<body>/point_displacement + (n_points×3)
 /// /time/<k>/<body>/xdmf/…             + cell fields repeated per shown cell (only with type 42)
 /// /time/<k>/<body>/<patch>/{face_centres,contact_pressure,contact_traction,gap}
+/// /time/<k>/<body>/<patch>/xdmf/{displacement,stress,von_mises,plastic_strain}  + of the cells under the faces
 /// /history                            + (n_rows×n_columns, f64, chunked, growing); attr columns (strings)
 /// /increments                         + (n_written, u64, growing): the k of every /time/<k>, in written order
 /// /times                              + (n_written, f64, growing): their times
@@ -73,6 +80,8 @@ const INDEX_CHUNK: usize = 256;
 /// attributes `units` (in the case's consistent units: `length`,
 /// `force/length^2`, `1`), `location` (`cell`, `point`, `face`) and, with
 /// several columns, `components` (`x y z`; stress `xx yy zz xy yz xz`).
+/// The `xdmf` datasets exist so that every grid of the XDMF carries every
+/// field ([`xdmf_document`]).
 pub struct ResultsWriter {
     file: File,
     h5_path: PathBuf,
@@ -87,12 +96,18 @@ pub struct ResultsWriter {
     history: Option<History>,
     /// `/increments` and `/times`.
     index: (Dataset, Dataset),
+    /// Grids numbered so far (the XDMF's `block` field).
+    n_blocks: usize,
 }
 
 struct BodyState {
     grid: BodyGrid,
     n_cells: usize,
     cell_map: Option<Vec<u64>>,
+    /// The reference mesh, to find the cells under a patch's faces.
+    mesh: CellMeshData,
+    /// Per patch of `grid.patches`: the cell each face bounds.
+    face_cells: Vec<Vec<u64>>,
 }
 
 struct History {
@@ -231,6 +246,7 @@ impl ResultsWriter {
             states.push(BodyState {
                 grid: BodyGrid {
                     name: name.to_string(),
+                    block: i,
                     n_points: mesh.n_points(),
                     vis_cells: vis.n_cells,
                     topo_len: vis.topology.len(),
@@ -239,6 +255,8 @@ impl ResultsWriter {
                 },
                 n_cells: mesh.n_cells(),
                 cell_map: vis.cell_map.clone(),
+                mesh: (*mesh).clone(),
+                face_cells: Vec::new(),
             });
             topologies.push(vis);
         }
@@ -264,7 +282,7 @@ impl ResultsWriter {
         let software = concat!("fvc ", env!("CARGO_PKG_VERSION"));
         put_attr(l, &file, "/", "software", &vlen(software)?)?;
         let mesh_g = group(l, &file, "", "mesh")?;
-        for ((name, mesh), vis) in bodies.iter().zip(&topologies) {
+        for (i, ((name, mesh), vis)) in bodies.iter().zip(&topologies).enumerate() {
             let bp = format!("/mesh/{name}");
             let bg = group(l, &mesh_g, "/mesh", name)?;
             put(
@@ -322,6 +340,11 @@ impl ResultsWriter {
             if let Some(map) = &vis.cell_map {
                 put(l, &xg, &xp, "cell_map", map, &[map.len()])?;
             }
+            let n = vis.n_cells;
+            put(l, &xg, &xp, "block", &vec![i as i64; n], &[n])?;
+            put(l, &xg, &xp, "zero", &vec![0.0; n], &[n])?;
+            put(l, &xg, &xp, "zero_vector", &vec![0.0; 3 * n], &[n, 3])?;
+            put(l, &xg, &xp, "nan", &vec![f64::NAN; n], &[n])?;
             group(l, &bg, &bp, "patches")?;
         }
         group(l, &file, "", "time")?;
@@ -349,6 +372,7 @@ impl ResultsWriter {
             steps: Vec::new(),
             history: None,
             index: (increments, times),
+            n_blocks: bodies.len(),
         };
         w.write_xdmf()?;
         Ok(w)
@@ -419,7 +443,7 @@ impl ResultsWriter {
         self.file.flush().at(|| l.to_string())?;
         self.last_k = Some(k);
         let grids: Vec<BodyGrid> = self.bodies.iter().map(|b| b.grid.clone()).collect();
-        let step = xdmf::render_step(&format!("{}.h5", self.title), &grids, &record);
+        let step = xdmf_document::render_step(&format!("{}.h5", self.title), &grids, &record);
         self.steps.push(step);
         self.write_xdmf()
     }
@@ -503,6 +527,8 @@ impl ResultsWriter {
                     None => {
                         xdmf::surface_topology(&p.faces, np)
                             .map_err(|e| OutputError::invalid(pw(&e.to_string())))?;
+                        face_cells(&state.mesh, &p.faces)
+                            .map_err(|e| OutputError::invalid(pw(&e)))?;
                     }
                 }
             }
@@ -574,10 +600,23 @@ impl ResultsWriter {
         }
         let mut indices = Vec::with_capacity(b.patches.len());
         for p in &b.patches {
-            indices.push(self.patch_index(l, bi, p)?);
+            let index = self.patch_index(l, bi, p)?;
+            indices.push(index);
             let nf = p.faces.n_faces();
             let pp = format!("{bp}/{}", p.name);
             let pg = group(l, &bg, &bp, p.name)?;
+            // the fields of the cells under the faces, for the XDMF
+            let cells = &self.bodies[bi].face_cells[index];
+            let xp = format!("{pp}/xdmf");
+            let xg = group(l, &pg, &pp, "xdmf")?;
+            let disp = expand(cells, b.displacement);
+            put(l, &xg, &xp, "displacement", disp.as_flattened(), &[nf, 3])?;
+            let stress = expand(cells, b.stress);
+            put(l, &xg, &xp, "stress", stress.as_flattened(), &[nf, 6])?;
+            put(l, &xg, &xp, "von_mises", &expand(cells, &vm), &[nf])?;
+            if let Some(ps) = b.plastic_strain {
+                put(l, &xg, &xp, "plastic_strain", &expand(cells, ps), &[nf])?;
+            }
             put(
                 l,
                 &pg,
@@ -613,6 +652,12 @@ impl ResultsWriter {
             return Ok(i);
         }
         let topo = xdmf::surface_topology(&p.faces, state.grid.n_points)?;
+        let cells = face_cells(&state.mesh, &p.faces).map_err(|e| {
+            OutputError::invalid(format!(
+                "body '{}', patch '{}': {e}",
+                state.grid.name, p.name
+            ))
+        })?;
         let nf = p.faces.n_faces();
         let first = p.faces.offsets.first().copied().unwrap_or(0);
         let offsets: Vec<u64> = p
@@ -633,11 +678,18 @@ impl ResultsWriter {
         put(l, &g, &gp, "offsets", &offsets, &[offsets.len()])?;
         put(l, &g, &gp, "connectivity", &conn, &[conn.len()])?;
         put(l, &g, &gp, "xdmf_topology", &topo, &[topo.len()])?;
+        put(l, &g, &gp, "cells", &cells, &[nf])?;
+        let block = self.n_blocks;
+        self.n_blocks += 1;
+        put(l, &g, &gp, "block", &vec![block as i64; nf], &[nf])?;
+        put(l, &g, &gp, "zero", &vec![0.0; nf], &[nf])?;
         state.grid.patches.push(PatchGrid {
             name: p.name.to_string(),
+            block,
             n_faces: nf,
             topo_len: topo.len(),
         });
+        state.face_cells.push(cells);
         Ok(state.grid.patches.len() - 1)
     }
 
@@ -712,7 +764,7 @@ impl ResultsWriter {
     fn write_xdmf(&self) -> Result<(), OutputError> {
         let grids: Vec<BodyGrid> = self.bodies.iter().map(|b| b.grid.clone()).collect();
         let h5_name = format!("{}.h5", self.title);
-        let text = xdmf::render(&h5_name, &self.title, &grids, &self.steps);
+        let text = xdmf_document::render(&h5_name, &self.title, &grids, &self.steps);
         let tmp = self.xdmf_path.with_extension("xdmf.tmp");
         let io = |source| OutputError::Io {
             path: self.xdmf_path.clone(),

@@ -33,8 +33,10 @@
 //! # Ok(()) }
 //! ```
 mod datasets;
+mod face_cells;
 mod hdf5_writer;
 mod xdmf;
+mod xdmf_document;
 
 pub use hdf5_writer::ResultsWriter;
 

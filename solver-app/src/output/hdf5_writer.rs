@@ -55,8 +55,7 @@ const INDEX_CHUNK: usize = 256;
 /// /mesh/<body>/cells/polyhedron_faces/{cell_offsets,offsets,connectivity}   + only with type 42
 /// /mesh/<body>/xdmf/topology          + XDMF Mixed array (i64); attr n_cells = cells shown
 /// /mesh/<body>/xdmf/cell_map          + mesh cell of every shown cell (only with type 42)
-/// /mesh/<body>/xdmf/{block,zero,zero_vector,nan}  + per shown cell: the body's `block` number and
-///                                     the constants the XDMF gives its cells for the patch fields
+/// /mesh/<body>/xdmf/{block,zero}     + per shown cell: the body's `block` number, 0
 /// /mesh/<body>/patches/<patch>/{offsets,connectivity,xdmf_topology}  + patch faces over body points
 /// /mesh/<body>/patches/<patch>/cells  + the mesh cell each face bounds
 /// /mesh/<body>/patches/<patch>/{block,zero}  + per face: the patch's `block` number, 0
@@ -67,7 +66,9 @@ const INDEX_CHUNK: usize = 256;
 /// /time/<k>/<body>/von_mises          + (n_cells)
 /// /time/<k>/<body>/plastic_strain     (n_cells; when given)
 /// /time/<k>/<body>/point_displacement + (n_points×3)
-/// /time/<k>/<body>/xdmf/…             + cell fields repeated per shown cell (only with type 42)
+/// /time/<k>/<body>/xdmf/…             + per shown cell: contact_pressure, contact_traction, gap of the
+///                                     patch face the cell bounds (0, 0, NaN for none); with type 42 the
+///                                     cell fields repeated per shown cell
 /// /time/<k>/<body>/<patch>/{face_centres,contact_pressure,contact_traction,gap}
 /// /time/<k>/<body>/<patch>/xdmf/{displacement,stress,von_mises,plastic_strain}  + of the cells under the faces
 /// /history                            + (n_rows×n_columns, f64, chunked, growing); attr columns (strings)
@@ -152,6 +153,22 @@ fn put<T: H5Type>(
     let at = || format!("{label}:{gpath}/{name}");
     debug_assert_eq!(shape.iter().product::<usize>(), data.len());
     super::datasets::create(g, name, data, shape).at(at)?;
+    Ok(())
+}
+
+/// [`put`] with the attribute `location` given ([`super::datasets::create_at`]).
+fn put_at<T: H5Type>(
+    label: &str,
+    g: &Group,
+    gpath: &str,
+    name: &str,
+    data: &[T],
+    shape: &[usize],
+    location: Option<&'static str>,
+) -> Result<(), OutputError> {
+    let at = || format!("{label}:{gpath}/{name}");
+    debug_assert_eq!(shape.iter().product::<usize>(), data.len());
+    super::datasets::create_at(g, name, data, shape, location).at(at)?;
     Ok(())
 }
 
@@ -343,8 +360,6 @@ impl ResultsWriter {
             let n = vis.n_cells;
             put(l, &xg, &xp, "block", &vec![i as i64; n], &[n])?;
             put(l, &xg, &xp, "zero", &vec![0.0; n], &[n])?;
-            put(l, &xg, &xp, "zero_vector", &vec![0.0; 3 * n], &[n, 3])?;
-            put(l, &xg, &xp, "nan", &vec![f64::NAN; n], &[n])?;
             group(l, &bg, &bp, "patches")?;
         }
         group(l, &file, "", "time")?;
@@ -546,6 +561,11 @@ impl ResultsWriter {
         bi: usize,
         b: &BodyIncrement,
     ) -> Result<Vec<usize>, OutputError> {
+        let indices = b
+            .patches
+            .iter()
+            .map(|p| self.patch_index(l, bi, p))
+            .collect::<Result<Vec<_>, _>>()?;
         let state = &self.bodies[bi];
         let (np, nc) = (state.grid.n_points, state.n_cells);
         let bp = format!("{tp}/{}", b.name);
@@ -573,50 +593,11 @@ impl ResultsWriter {
             b.point_displacement.as_flattened(),
             &[np, 3],
         )?;
-        if let Some(map) = &state.cell_map {
-            let n = map.len();
-            let xp = format!("{bp}/xdmf");
-            let xg = group(l, &bg, &bp, "xdmf")?;
-            put(
-                l,
-                &xg,
-                &xp,
-                "displacement",
-                expand(map, b.displacement).as_flattened(),
-                &[n, 3],
-            )?;
-            put(
-                l,
-                &xg,
-                &xp,
-                "stress",
-                expand(map, b.stress).as_flattened(),
-                &[n, 6],
-            )?;
-            put(l, &xg, &xp, "von_mises", &expand(map, &vm), &[n])?;
-            if let Some(ps) = b.plastic_strain {
-                put(l, &xg, &xp, "plastic_strain", &expand(map, ps), &[n])?;
-            }
-        }
-        let mut indices = Vec::with_capacity(b.patches.len());
-        for p in &b.patches {
-            let index = self.patch_index(l, bi, p)?;
-            indices.push(index);
+        self.write_shown_cells(l, &bg, &bp, bi, b, &vm, &indices)?;
+        for (p, &index) in b.patches.iter().zip(&indices) {
             let nf = p.faces.n_faces();
             let pp = format!("{bp}/{}", p.name);
             let pg = group(l, &bg, &bp, p.name)?;
-            // the fields of the cells under the faces, for the XDMF
-            let cells = &self.bodies[bi].face_cells[index];
-            let xp = format!("{pp}/xdmf");
-            let xg = group(l, &pg, &pp, "xdmf")?;
-            let disp = expand(cells, b.displacement);
-            put(l, &xg, &xp, "displacement", disp.as_flattened(), &[nf, 3])?;
-            let stress = expand(cells, b.stress);
-            put(l, &xg, &xp, "stress", stress.as_flattened(), &[nf, 6])?;
-            put(l, &xg, &xp, "von_mises", &expand(cells, &vm), &[nf])?;
-            if let Some(ps) = b.plastic_strain {
-                put(l, &xg, &xp, "plastic_strain", &expand(cells, ps), &[nf])?;
-            }
             put(
                 l,
                 &pg,
@@ -635,8 +616,97 @@ impl ResultsWriter {
                 &[nf, 3],
             )?;
             put(l, &pg, &pp, "gap", p.gap, &[nf])?;
+            // for the XDMF: the fields of the cells under the faces
+            let cells = &self.bodies[bi].face_cells[index];
+            let xp = format!("{pp}/xdmf");
+            let xg = group(l, &pg, &pp, "xdmf")?;
+            let disp = expand(cells, b.displacement);
+            let at = Some("face");
+            put_at(
+                l,
+                &xg,
+                &xp,
+                "displacement",
+                disp.as_flattened(),
+                &[nf, 3],
+                at,
+            )?;
+            let stress = expand(cells, b.stress);
+            put_at(l, &xg, &xp, "stress", stress.as_flattened(), &[nf, 6], at)?;
+            put_at(l, &xg, &xp, "von_mises", &expand(cells, &vm), &[nf], at)?;
+            if let Some(ps) = b.plastic_strain {
+                put_at(l, &xg, &xp, "plastic_strain", &expand(cells, ps), &[nf], at)?;
+            }
         }
         Ok(indices)
+    }
+
+    /// Writes `/time/<k>/<body>/xdmf/`, one value per cell ParaView shows:
+    /// the contact values of the patch face each cell bounds (0, 0, NaN
+    /// for cells that bound none; the last patch given wins where a cell
+    /// bounds several faces), so that a body's surface and the patch faces
+    /// on it show the same colour; and for decomposed bodies the cell
+    /// fields repeated per shown cell.
+    #[allow(clippy::too_many_arguments)]
+    fn write_shown_cells(
+        &self,
+        l: &str,
+        bg: &Group,
+        bp: &str,
+        bi: usize,
+        b: &BodyIncrement,
+        vm: &[f64],
+        indices: &[usize],
+    ) -> Result<(), OutputError> {
+        let state = &self.bodies[bi];
+        let nc = state.n_cells;
+        let mut pressure = vec![0.0; nc];
+        let mut traction = vec![[0.0; 3]; nc];
+        let mut gap = vec![f64::NAN; nc];
+        for (p, &index) in b.patches.iter().zip(indices) {
+            for (f, &c) in state.face_cells[index].iter().enumerate() {
+                let c = c as usize;
+                pressure[c] = p.contact_pressure[f];
+                traction[c] = p.contact_traction[f];
+                gap[c] = p.gap[f];
+            }
+        }
+        let xp = format!("{bp}/xdmf");
+        let xg = group(l, bg, bp, "xdmf")?;
+        let at = Some("cell");
+        match &state.cell_map {
+            None => {
+                put_at(l, &xg, &xp, "contact_pressure", &pressure, &[nc], at)?;
+                let t = traction.as_flattened();
+                put_at(l, &xg, &xp, "contact_traction", t, &[nc, 3], at)?;
+                put_at(l, &xg, &xp, "gap", &gap, &[nc], at)?;
+            }
+            Some(map) => {
+                let n = map.len();
+                let p = expand(map, &pressure);
+                put_at(l, &xg, &xp, "contact_pressure", &p, &[n], at)?;
+                let t = expand(map, &traction);
+                put_at(
+                    l,
+                    &xg,
+                    &xp,
+                    "contact_traction",
+                    t.as_flattened(),
+                    &[n, 3],
+                    at,
+                )?;
+                put_at(l, &xg, &xp, "gap", &expand(map, &gap), &[n], at)?;
+                let d = expand(map, b.displacement);
+                put(l, &xg, &xp, "displacement", d.as_flattened(), &[n, 3])?;
+                let s = expand(map, b.stress);
+                put(l, &xg, &xp, "stress", s.as_flattened(), &[n, 6])?;
+                put(l, &xg, &xp, "von_mises", &expand(map, vm), &[n])?;
+                if let Some(ps) = b.plastic_strain {
+                    put(l, &xg, &xp, "plastic_strain", &expand(map, ps), &[n])?;
+                }
+            }
+        }
+        Ok(())
     }
 
     /// Index of the patch in the body's list; on first sight writes its

@@ -7,11 +7,13 @@
 //! only the arrays *every* piece has. Bodies and patches used to share
 //! only `point_displacement`, so colouring by `von_mises` found nothing
 //! and drew everything grey. Every grid therefore carries every field
-//! ([`FIELDS`]): body cells get `contact_pressure` 0, `contact_traction` 0
-//! and `gap` NaN (nothing opposite, as on an unmatched patch face); patch
-//! faces get the `displacement`, `stress`, `von_mises` and
-//! `plastic_strain` of the cell they bound; a body without plastic strain
-//! gets 0 when another body has it. The cell field `block` numbers the
+//! ([`FIELDS`]): body cells get the `contact_pressure`, `contact_traction`
+//! and `gap` of the patch face they bound (0, 0 and NaN — nothing opposite,
+//! as on an unmatched face — for cells that bound none), so that a body's
+//! surface and the patch drawn over it show one colour, not a mottle of
+//! both (the surfaces coincide); patch faces get the `displacement`,
+//! `stress`, `von_mises` and `plastic_strain` of the cell they bound; a
+//! body without plastic strain gets 0 when another body has it. The cell field `block` numbers the
 //! grids (bodies first, then patches as they appear), which the default
 //! reader does not name: a Threshold on it picks a body or a patch.
 //!
@@ -90,9 +92,10 @@ Do not apply Warp By Vector with point_displacement: it adds the displacement a 
 time. Warp By Vector with scale factor -1 shows the reference configuration; \
 scale factor s shows the displacement 1 + s times.";
 const FIELD_NOTE: &str = "Every body and patch grid carries every field, so that a \
-reader which merges them keeps all: body cells have contact_pressure 0, \
-contact_traction 0 and gap NaN; patch faces have the displacement, stress, von_mises \
-and plastic_strain of the cell they bound; a body without plastic strain has 0.";
+reader which merges them keeps all: body cells have the contact_pressure, \
+contact_traction and gap of the contact patch face they bound (0, 0 and NaN if none); \
+patch faces have the displacement, stress, von_mises and plastic_strain of the cell \
+they bound; a body without plastic strain has 0.";
 
 /// Renders the XDMF document from the already rendered time steps (see
 /// [`render_step`]); without steps it shows the initial meshes, no time.
@@ -189,9 +192,7 @@ pub(crate) fn render_step(h5_name: &str, bodies: &[BodyGrid], inc: &IncrementRec
         let mesh = format!("/mesh/{}/xdmf", b.name);
         let source = |field: &str| match field {
             "plastic_strain" if !plastic => format!("{mesh}/zero"),
-            "contact_pressure" => format!("{mesh}/zero"),
-            "contact_traction" => format!("{mesh}/zero_vector"),
-            "gap" => format!("{mesh}/nan"),
+            "contact_pressure" | "contact_traction" | "gap" => format!("{base}/xdmf/{field}"),
             "block" => format!("{mesh}/block"),
             "point_displacement" => format!("{base}/point_displacement"),
             f => format!("{cells}/{f}"),

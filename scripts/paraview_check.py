@@ -10,12 +10,16 @@ cell/point arrays. The expectation is read from the XDMF itself: every
 grid (body or contact patch) of every time step must appear as a block
 with its NumberOfElements cells and all its attributes, and ParaView must
 report exactly the XDMF's time values. A "Warp By Vector" on
-point_displacement is applied at every step as well.
+point_displacement is applied at every step as well, only to see that the
+filter runs (the geometry is already the deformed one: users should not
+warp it).
 
 OpenDataFile picks ParaView's Xdmf3ReaderS, which shows the grids as
-unnamed pieces (matched here in file order); the check is repeated with
-Xdmf3ReaderT ("Xdmf3 Reader T" in the GUI's reader dialog), which keeps
-the body and patch names as block names.
+unnamed pieces (matched here in file order) of one dataset: its surface
+filter and MergeBlocks keep only the arrays all grids have, so the writer
+gives every grid every field. The check is repeated with Xdmf3ReaderT
+("Xdmf3 Reader T" in the GUI's reader dialog), which keeps the body and
+patch names as block names.
 
 Exits 1 on any mismatch, 2 if the file cannot be opened at all.
 """

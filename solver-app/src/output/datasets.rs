@@ -49,6 +49,18 @@ pub(super) fn create<T: H5Type>(
     data: &[T],
     shape: &[usize],
 ) -> hdf5::Result<Dataset> {
+    create_at(g, name, data, shape, None)
+}
+
+/// [`create`], the attribute `location` (`cell`, `face`) given for a field
+/// stored where it does not usually live (the XDMF's copies).
+pub(super) fn create_at<T: H5Type>(
+    g: &Group,
+    name: &str,
+    data: &[T],
+    shape: &[usize],
+    location: Option<&'static str>,
+) -> hdf5::Result<Dataset> {
     let builder = g.new_dataset::<T>().shape(shape);
     let ds = if data.is_empty() {
         builder.create(name)?
@@ -67,7 +79,10 @@ pub(super) fn create<T: H5Type>(
         ds.write_raw(data)?;
         ds
     };
-    if let Some(field) = field(name) {
+    if let Some(mut field) = field(name) {
+        if let Some(location) = location {
+            field.location = location;
+        }
         field.write_attributes(&ds)?;
     }
     Ok(ds)

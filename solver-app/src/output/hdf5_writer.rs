@@ -18,7 +18,9 @@ use std::path::{Path, PathBuf};
 use hdf5::types::VarLenUnicode;
 use hdf5::{Dataset, File, Group, H5Type, Location};
 
-use super::xdmf::{self, BodyGrid, IncrementRecord, PatchGrid};
+use super::face_cells::face_cells;
+use super::xdmf;
+use super::xdmf_document::{self, BodyGrid, IncrementRecord, PatchGrid};
 use super::{von_mises, BodyIncrement, CellMeshData, OutputError, PatchIncrement};
 
 /// Names a patch may not take: they are datasets or groups of
@@ -53,7 +55,10 @@ const INDEX_CHUNK: usize = 256;
 /// /mesh/<body>/cells/polyhedron_faces/{cell_offsets,offsets,connectivity}   + only with type 42
 /// /mesh/<body>/xdmf/topology          + XDMF Mixed array (i64); attr n_cells = cells shown
 /// /mesh/<body>/xdmf/cell_map          + mesh cell of every shown cell (only with type 42)
+/// /mesh/<body>/xdmf/{block,zero}     + per shown cell: the body's `block` number, 0
 /// /mesh/<body>/patches/<patch>/{offsets,connectivity,xdmf_topology}  + patch faces over body points
+/// /mesh/<body>/patches/<patch>/cells  + the mesh cell each face bounds
+/// /mesh/<body>/patches/<patch>/{block,zero}  + per face: the patch's `block` number, 0
 /// /time/<k>                           attrs: time (f64), outer_iterations (u64), residual (f64), converged (bool)
 /// /time/<k>/<body>/points             (n_points×3, current)
 /// /time/<k>/<body>/displacement       (n_cells×3)
@@ -61,8 +66,11 @@ const INDEX_CHUNK: usize = 256;
 /// /time/<k>/<body>/von_mises          + (n_cells)
 /// /time/<k>/<body>/plastic_strain     (n_cells; when given)
 /// /time/<k>/<body>/point_displacement + (n_points×3)
-/// /time/<k>/<body>/xdmf/…             + cell fields repeated per shown cell (only with type 42)
+/// /time/<k>/<body>/xdmf/…             + per shown cell: contact_pressure, contact_traction, gap of the
+///                                     patch face the cell bounds (0, 0, NaN for none); with type 42 the
+///                                     cell fields repeated per shown cell
 /// /time/<k>/<body>/<patch>/{face_centres,contact_pressure,contact_traction,gap}
+/// /time/<k>/<body>/<patch>/xdmf/{displacement,stress,von_mises,plastic_strain}  + of the cells under the faces
 /// /history                            + (n_rows×n_columns, f64, chunked, growing); attr columns (strings)
 /// /increments                         + (n_written, u64, growing): the k of every /time/<k>, in written order
 /// /times                              + (n_written, f64, growing): their times
@@ -73,6 +81,8 @@ const INDEX_CHUNK: usize = 256;
 /// attributes `units` (in the case's consistent units: `length`,
 /// `force/length^2`, `1`), `location` (`cell`, `point`, `face`) and, with
 /// several columns, `components` (`x y z`; stress `xx yy zz xy yz xz`).
+/// The `xdmf` datasets exist so that every grid of the XDMF carries every
+/// field ([`xdmf_document`]).
 pub struct ResultsWriter {
     file: File,
     h5_path: PathBuf,
@@ -87,12 +97,18 @@ pub struct ResultsWriter {
     history: Option<History>,
     /// `/increments` and `/times`.
     index: (Dataset, Dataset),
+    /// Grids numbered so far (the XDMF's `block` field).
+    n_blocks: usize,
 }
 
 struct BodyState {
     grid: BodyGrid,
     n_cells: usize,
     cell_map: Option<Vec<u64>>,
+    /// The reference mesh, to find the cells under a patch's faces.
+    mesh: CellMeshData,
+    /// Per patch of `grid.patches`: the cell each face bounds.
+    face_cells: Vec<Vec<u64>>,
 }
 
 struct History {
@@ -137,6 +153,22 @@ fn put<T: H5Type>(
     let at = || format!("{label}:{gpath}/{name}");
     debug_assert_eq!(shape.iter().product::<usize>(), data.len());
     super::datasets::create(g, name, data, shape).at(at)?;
+    Ok(())
+}
+
+/// [`put`] with the attribute `location` given ([`super::datasets::create_at`]).
+fn put_at<T: H5Type>(
+    label: &str,
+    g: &Group,
+    gpath: &str,
+    name: &str,
+    data: &[T],
+    shape: &[usize],
+    location: Option<&'static str>,
+) -> Result<(), OutputError> {
+    let at = || format!("{label}:{gpath}/{name}");
+    debug_assert_eq!(shape.iter().product::<usize>(), data.len());
+    super::datasets::create_at(g, name, data, shape, location).at(at)?;
     Ok(())
 }
 
@@ -231,6 +263,7 @@ impl ResultsWriter {
             states.push(BodyState {
                 grid: BodyGrid {
                     name: name.to_string(),
+                    block: i,
                     n_points: mesh.n_points(),
                     vis_cells: vis.n_cells,
                     topo_len: vis.topology.len(),
@@ -239,6 +272,8 @@ impl ResultsWriter {
                 },
                 n_cells: mesh.n_cells(),
                 cell_map: vis.cell_map.clone(),
+                mesh: (*mesh).clone(),
+                face_cells: Vec::new(),
             });
             topologies.push(vis);
         }
@@ -264,7 +299,7 @@ impl ResultsWriter {
         let software = concat!("fvc ", env!("CARGO_PKG_VERSION"));
         put_attr(l, &file, "/", "software", &vlen(software)?)?;
         let mesh_g = group(l, &file, "", "mesh")?;
-        for ((name, mesh), vis) in bodies.iter().zip(&topologies) {
+        for (i, ((name, mesh), vis)) in bodies.iter().zip(&topologies).enumerate() {
             let bp = format!("/mesh/{name}");
             let bg = group(l, &mesh_g, "/mesh", name)?;
             put(
@@ -322,6 +357,9 @@ impl ResultsWriter {
             if let Some(map) = &vis.cell_map {
                 put(l, &xg, &xp, "cell_map", map, &[map.len()])?;
             }
+            let n = vis.n_cells;
+            put(l, &xg, &xp, "block", &vec![i as i64; n], &[n])?;
+            put(l, &xg, &xp, "zero", &vec![0.0; n], &[n])?;
             group(l, &bg, &bp, "patches")?;
         }
         group(l, &file, "", "time")?;
@@ -349,6 +387,7 @@ impl ResultsWriter {
             steps: Vec::new(),
             history: None,
             index: (increments, times),
+            n_blocks: bodies.len(),
         };
         w.write_xdmf()?;
         Ok(w)
@@ -419,7 +458,7 @@ impl ResultsWriter {
         self.file.flush().at(|| l.to_string())?;
         self.last_k = Some(k);
         let grids: Vec<BodyGrid> = self.bodies.iter().map(|b| b.grid.clone()).collect();
-        let step = xdmf::render_step(&format!("{}.h5", self.title), &grids, &record);
+        let step = xdmf_document::render_step(&format!("{}.h5", self.title), &grids, &record);
         self.steps.push(step);
         self.write_xdmf()
     }
@@ -503,6 +542,8 @@ impl ResultsWriter {
                     None => {
                         xdmf::surface_topology(&p.faces, np)
                             .map_err(|e| OutputError::invalid(pw(&e.to_string())))?;
+                        face_cells(&state.mesh, &p.faces)
+                            .map_err(|e| OutputError::invalid(pw(&e)))?;
                     }
                 }
             }
@@ -520,6 +561,11 @@ impl ResultsWriter {
         bi: usize,
         b: &BodyIncrement,
     ) -> Result<Vec<usize>, OutputError> {
+        let indices = b
+            .patches
+            .iter()
+            .map(|p| self.patch_index(l, bi, p))
+            .collect::<Result<Vec<_>, _>>()?;
         let state = &self.bodies[bi];
         let (np, nc) = (state.grid.n_points, state.n_cells);
         let bp = format!("{tp}/{}", b.name);
@@ -547,34 +593,8 @@ impl ResultsWriter {
             b.point_displacement.as_flattened(),
             &[np, 3],
         )?;
-        if let Some(map) = &state.cell_map {
-            let n = map.len();
-            let xp = format!("{bp}/xdmf");
-            let xg = group(l, &bg, &bp, "xdmf")?;
-            put(
-                l,
-                &xg,
-                &xp,
-                "displacement",
-                expand(map, b.displacement).as_flattened(),
-                &[n, 3],
-            )?;
-            put(
-                l,
-                &xg,
-                &xp,
-                "stress",
-                expand(map, b.stress).as_flattened(),
-                &[n, 6],
-            )?;
-            put(l, &xg, &xp, "von_mises", &expand(map, &vm), &[n])?;
-            if let Some(ps) = b.plastic_strain {
-                put(l, &xg, &xp, "plastic_strain", &expand(map, ps), &[n])?;
-            }
-        }
-        let mut indices = Vec::with_capacity(b.patches.len());
-        for p in &b.patches {
-            indices.push(self.patch_index(l, bi, p)?);
+        self.write_shown_cells(l, &bg, &bp, bi, b, &vm, &indices)?;
+        for (p, &index) in b.patches.iter().zip(&indices) {
             let nf = p.faces.n_faces();
             let pp = format!("{bp}/{}", p.name);
             let pg = group(l, &bg, &bp, p.name)?;
@@ -596,8 +616,97 @@ impl ResultsWriter {
                 &[nf, 3],
             )?;
             put(l, &pg, &pp, "gap", p.gap, &[nf])?;
+            // for the XDMF: the fields of the cells under the faces
+            let cells = &self.bodies[bi].face_cells[index];
+            let xp = format!("{pp}/xdmf");
+            let xg = group(l, &pg, &pp, "xdmf")?;
+            let disp = expand(cells, b.displacement);
+            let at = Some("face");
+            put_at(
+                l,
+                &xg,
+                &xp,
+                "displacement",
+                disp.as_flattened(),
+                &[nf, 3],
+                at,
+            )?;
+            let stress = expand(cells, b.stress);
+            put_at(l, &xg, &xp, "stress", stress.as_flattened(), &[nf, 6], at)?;
+            put_at(l, &xg, &xp, "von_mises", &expand(cells, &vm), &[nf], at)?;
+            if let Some(ps) = b.plastic_strain {
+                put_at(l, &xg, &xp, "plastic_strain", &expand(cells, ps), &[nf], at)?;
+            }
         }
         Ok(indices)
+    }
+
+    /// Writes `/time/<k>/<body>/xdmf/`, one value per cell ParaView shows:
+    /// the contact values of the patch face each cell bounds (0, 0, NaN
+    /// for cells that bound none; the last patch given wins where a cell
+    /// bounds several faces), so that a body's surface and the patch faces
+    /// on it show the same colour; and for decomposed bodies the cell
+    /// fields repeated per shown cell.
+    #[allow(clippy::too_many_arguments)]
+    fn write_shown_cells(
+        &self,
+        l: &str,
+        bg: &Group,
+        bp: &str,
+        bi: usize,
+        b: &BodyIncrement,
+        vm: &[f64],
+        indices: &[usize],
+    ) -> Result<(), OutputError> {
+        let state = &self.bodies[bi];
+        let nc = state.n_cells;
+        let mut pressure = vec![0.0; nc];
+        let mut traction = vec![[0.0; 3]; nc];
+        let mut gap = vec![f64::NAN; nc];
+        for (p, &index) in b.patches.iter().zip(indices) {
+            for (f, &c) in state.face_cells[index].iter().enumerate() {
+                let c = c as usize;
+                pressure[c] = p.contact_pressure[f];
+                traction[c] = p.contact_traction[f];
+                gap[c] = p.gap[f];
+            }
+        }
+        let xp = format!("{bp}/xdmf");
+        let xg = group(l, bg, bp, "xdmf")?;
+        let at = Some("cell");
+        match &state.cell_map {
+            None => {
+                put_at(l, &xg, &xp, "contact_pressure", &pressure, &[nc], at)?;
+                let t = traction.as_flattened();
+                put_at(l, &xg, &xp, "contact_traction", t, &[nc, 3], at)?;
+                put_at(l, &xg, &xp, "gap", &gap, &[nc], at)?;
+            }
+            Some(map) => {
+                let n = map.len();
+                let p = expand(map, &pressure);
+                put_at(l, &xg, &xp, "contact_pressure", &p, &[n], at)?;
+                let t = expand(map, &traction);
+                put_at(
+                    l,
+                    &xg,
+                    &xp,
+                    "contact_traction",
+                    t.as_flattened(),
+                    &[n, 3],
+                    at,
+                )?;
+                put_at(l, &xg, &xp, "gap", &expand(map, &gap), &[n], at)?;
+                let d = expand(map, b.displacement);
+                put(l, &xg, &xp, "displacement", d.as_flattened(), &[n, 3])?;
+                let s = expand(map, b.stress);
+                put(l, &xg, &xp, "stress", s.as_flattened(), &[n, 6])?;
+                put(l, &xg, &xp, "von_mises", &expand(map, vm), &[n])?;
+                if let Some(ps) = b.plastic_strain {
+                    put(l, &xg, &xp, "plastic_strain", &expand(map, ps), &[n])?;
+                }
+            }
+        }
+        Ok(())
     }
 
     /// Index of the patch in the body's list; on first sight writes its
@@ -613,6 +722,12 @@ impl ResultsWriter {
             return Ok(i);
         }
         let topo = xdmf::surface_topology(&p.faces, state.grid.n_points)?;
+        let cells = face_cells(&state.mesh, &p.faces).map_err(|e| {
+            OutputError::invalid(format!(
+                "body '{}', patch '{}': {e}",
+                state.grid.name, p.name
+            ))
+        })?;
         let nf = p.faces.n_faces();
         let first = p.faces.offsets.first().copied().unwrap_or(0);
         let offsets: Vec<u64> = p
@@ -633,11 +748,18 @@ impl ResultsWriter {
         put(l, &g, &gp, "offsets", &offsets, &[offsets.len()])?;
         put(l, &g, &gp, "connectivity", &conn, &[conn.len()])?;
         put(l, &g, &gp, "xdmf_topology", &topo, &[topo.len()])?;
+        put(l, &g, &gp, "cells", &cells, &[nf])?;
+        let block = self.n_blocks;
+        self.n_blocks += 1;
+        put(l, &g, &gp, "block", &vec![block as i64; nf], &[nf])?;
+        put(l, &g, &gp, "zero", &vec![0.0; nf], &[nf])?;
         state.grid.patches.push(PatchGrid {
             name: p.name.to_string(),
+            block,
             n_faces: nf,
             topo_len: topo.len(),
         });
+        state.face_cells.push(cells);
         Ok(state.grid.patches.len() - 1)
     }
 
@@ -712,7 +834,7 @@ impl ResultsWriter {
     fn write_xdmf(&self) -> Result<(), OutputError> {
         let grids: Vec<BodyGrid> = self.bodies.iter().map(|b| b.grid.clone()).collect();
         let h5_name = format!("{}.h5", self.title);
-        let text = xdmf::render(&h5_name, &self.title, &grids, &self.steps);
+        let text = xdmf_document::render(&h5_name, &self.title, &grids, &self.steps);
         let tmp = self.xdmf_path.with_extension("xdmf.tmp");
         let io = |source| OutputError::Io {
             path: self.xdmf_path.clone(),

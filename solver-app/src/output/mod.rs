@@ -33,8 +33,10 @@
 //! # Ok(()) }
 //! ```
 mod datasets;
+mod face_cells;
 mod hdf5_writer;
 mod xdmf;
+mod xdmf_document;
 
 pub use hdf5_writer::ResultsWriter;
 
@@ -406,7 +408,7 @@ pub struct BodyIncrement<'a> {
     pub stress: &'a [[f64; 6]],
     /// Equivalent plastic strain per cell (plastic models only).
     pub plastic_strain: Option<&'a [f64]>,
-    /// Point displacement (`n_points`), for ParaView's "Warp By Vector".
+    /// Point displacement (`n_points`): `points` minus the initial points.
     pub point_displacement: &'a [[f64; 3]],
     /// Contact (or other reported) patches.
     pub patches: Vec<PatchIncrement<'a>>,

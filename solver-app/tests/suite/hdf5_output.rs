@@ -65,9 +65,9 @@ fn hex_body() -> CellMeshData {
     CellMeshData::from_cells(pts, cells.iter().map(|c| (vtk::HEXAHEDRON, c.as_slice()))).unwrap()
 }
 
-/// The top faces (z = 1) of the hex body.
+/// The top faces (z = 1) of the hex body: of cell 1, then of cell 0.
 const HEX_TOP_OFFSETS: [u32; 3] = [0, 4, 8];
-const HEX_TOP_FACES: [u32; 8] = [6, 7, 10, 9, 7, 8, 11, 10];
+const HEX_TOP_FACES: [u32; 8] = [7, 8, 11, 10, 6, 7, 10, 9];
 
 /// A unit cube on top of the hex body (z ∈ [1,2], corners in hexahedron
 /// order) cut into five tetrahedra: four corner ones and a central one.
@@ -114,7 +114,8 @@ fn tet_volume(pts: &[[f64; 3]], t: [u32; 4]) -> f64 {
         / 6.0
 }
 
-/// Bottom faces (z = 1) of the tet body, outward normal −z.
+/// Bottom faces (z = 1) of the tet body, outward normal −z: of tetrahedra
+/// 0 and 1.
 const TET_BOTTOM_OFFSETS: [u32; 3] = [0, 3, 6];
 const TET_BOTTOM_FACES: [u32; 6] = [0, 2, 1, 0, 3, 2];
 
@@ -278,9 +279,9 @@ fn check_increment(f: &hdf5::File, hex: &CellMeshData, tet: &CellMeshData, k: us
     let mut names = g.member_names().unwrap();
     names.sort();
     assert_eq!(names, ["block", "tets"]);
-    for (name, mesh, seed, plastic, pname) in [
-        ("block", hex, 0.0, true, "top"),
-        ("tets", tet, 10.0, false, "bottom"),
+    for (name, mesh, seed, plastic, pname, under) in [
+        ("block", hex, 0.0, true, "top", [1, 0]),
+        ("tets", tet, 10.0, false, "bottom", [0, 1]),
     ] {
         let fx = fields(mesh, 2, k, seed);
         let b = format!("time/{k}/{name}");
@@ -313,6 +314,34 @@ fn check_increment(f: &hdf5::File, hex: &CellMeshData, tet: &CellMeshData, k: us
         check_scalar(f, &format!("{p}/contact_pressure"), &fx.pressure);
         check_vec3(f, &format!("{p}/contact_traction"), &fx.traction);
         check_scalar(f, &format!("{p}/gap"), &fx.gap);
+        // for the XDMF: the fields of the cells under the faces
+        let x = format!("{p}/xdmf");
+        let disp = under.map(|c| fx.displacement[c]);
+        check_vec3(f, &format!("{x}/displacement"), &disp);
+        let stress = under.map(|c| fx.stress[c]);
+        assert_eq!(read_f64(f, &format!("{x}/stress")).1, stress.as_flattened());
+        check_scalar(f, &format!("{x}/von_mises"), &under.map(|c| vm[c]));
+        assert_eq!(f.link_exists(&format!("{x}/plastic_strain")), plastic);
+        if plastic {
+            let ps = under.map(|c| fx.plastic[c]);
+            check_scalar(f, &format!("{x}/plastic_strain"), &ps);
+        }
+        // and per cell the contact values of the face it bounds
+        let mut pressure = vec![0.0; mesh.n_cells()];
+        let mut traction = vec![[0.0; 3]; mesh.n_cells()];
+        let mut gap = vec![f64::NAN; mesh.n_cells()];
+        for (face, c) in under.into_iter().enumerate() {
+            (pressure[c], traction[c], gap[c]) =
+                (fx.pressure[face], fx.traction[face], fx.gap[face]);
+        }
+        let x = format!("{b}/xdmf");
+        check_scalar(f, &format!("{x}/contact_pressure"), &pressure);
+        check_vec3(f, &format!("{x}/contact_traction"), &traction);
+        let (_, g) = read_f64(f, &format!("{x}/gap"));
+        assert_eq!(g.len(), gap.len());
+        for (a, e) in g.iter().zip(&gap) {
+            assert!(a == e || (a.is_nan() && e.is_nan()), "{x}/gap: {g:?}");
+        }
         let mut members = f.group(&b).unwrap().member_names().unwrap();
         members.sort();
         let mut expected = vec![
@@ -321,6 +350,7 @@ fn check_increment(f: &hdf5::File, hex: &CellMeshData, tet: &CellMeshData, k: us
             "points",
             "stress",
             "von_mises",
+            "xdmf",
             pname,
         ];
         if plastic {
@@ -470,6 +500,31 @@ fn check_xdmf(xdmf: &Path, h5: &hdf5::File, n_steps: usize) -> Vec<Element> {
     }
     assert!(n_items > 0);
     els
+}
+
+/// Per uniform grid of `els` (a time step and what follows): its name and,
+/// per attribute, `name:type:centre` and the dataset it reads.
+fn grid_fields(els: &[Element]) -> Vec<(String, Vec<(String, String)>)> {
+    let mut grids: Vec<(String, Vec<(String, String)>)> = Vec::new();
+    let mut steps = 0;
+    for (i, e) in els.iter().enumerate() {
+        match (e.name.as_str(), e.attr("GridType")) {
+            ("Grid", Some("Collection")) => {
+                steps += 1;
+                if steps > 1 {
+                    break;
+                }
+            }
+            ("Grid", _) => grids.push((e.attr("Name").unwrap().to_string(), Vec::new())),
+            ("Attribute", _) => {
+                let name = ["Name", "AttributeType", "Center"].map(|a| e.attr(a).unwrap());
+                let item = els[i + 1].text.trim().to_string();
+                grids.last_mut().unwrap().1.push((name.join(":"), item));
+            }
+            _ => {}
+        }
+    }
+    grids
 }
 
 // ---------------------------------------------------------------- tests
@@ -680,17 +735,66 @@ fn two_body_results_read_back_exactly() {
             "{expected} not in {names:?}"
         );
     }
-    // plastic strain only for the body that has it
-    assert_eq!(
-        names
-            .iter()
-            .filter(|n| n.starts_with("plastic_strain"))
-            .count(),
-        1
-    );
+    // every grid of a step carries every field (ParaView's default reader
+    // keeps only the arrays all grids share), each from its own dataset
+    let grids = grid_fields(&els[pos("increment 2")..]);
+    let fields = |g: &(String, Vec<(String, String)>)| -> Vec<String> {
+        g.1.iter().map(|(name, _)| name.clone()).collect()
+    };
+    assert_eq!(grids.len(), 4);
+    assert_eq!(fields(&grids[0]).len(), 9);
+    for g in &grids {
+        assert_eq!(fields(g), fields(&grids[0]), "{}", g.0);
+    }
+    let source = |grid: &str, field: &str| -> String {
+        let g = grids.iter().find(|g| g.0 == grid).unwrap();
+        let s =
+            g.1.iter()
+                .find(|(n, _)| n.starts_with(&format!("{field}:")));
+        s.unwrap().1.clone()
+    };
+    for (grid, field, dataset) in [
+        ("block", "plastic_strain", "/time/2/block/plastic_strain"),
+        ("block", "gap", "/time/2/block/xdmf/gap"),
+        (
+            "block",
+            "contact_traction",
+            "/time/2/block/xdmf/contact_traction",
+        ),
+        ("block/top", "von_mises", "/time/2/block/top/xdmf/von_mises"),
+        ("block/top", "gap", "/time/2/block/top/gap"),
+        ("block/top", "block", "/mesh/block/patches/top/block"),
+        ("tets", "plastic_strain", "/mesh/tets/xdmf/zero"),
+        (
+            "tets",
+            "point_displacement",
+            "/time/2/tets/point_displacement",
+        ),
+        (
+            "tets/bottom",
+            "plastic_strain",
+            "/mesh/tets/patches/bottom/zero",
+        ),
+        ("tets/bottom", "stress", "/time/2/tets/bottom/xdmf/stress"),
+    ] {
+        assert_eq!(source(grid, field), format!("two-body.h5:{dataset}"));
+    }
+    // the constants: block numbers (bodies, then patches), 0
+    for (dataset, value) in [
+        ("mesh/block/xdmf/block", 0),
+        ("mesh/tets/xdmf/block", 1),
+        ("mesh/block/patches/top/block", 2),
+        ("mesh/tets/patches/bottom/block", 3),
+    ] {
+        let v = f.dataset(dataset).unwrap().read_raw::<i64>().unwrap();
+        assert!(!v.is_empty() && v.iter().all(|&b| b == value), "{dataset}");
+    }
+    assert_eq!(read_u64(&f, "mesh/block/patches/top/cells").1, [1, 0]);
+    assert_eq!(read_f64(&f, "mesh/tets/xdmf/zero").1, [0.0; 5]);
     let xml = std::fs::read_to_string(&xdmf_path).unwrap();
-    assert!(xml.contains("two-body.h5:/time/2/block/plastic_strain"));
-    assert!(!xml.contains("/tets/plastic_strain"));
+    assert!(xml.contains("configuration: /time/&lt;k&gt;/&lt;body&gt;/points"));
+    assert!(xml.contains("Do not apply Warp By Vector"));
+    assert!(xml.contains("cell field block: 0 block, 1 tets, 2 block/top, 3 tets/bottom"));
     assert!(xml.contains("two-body.h5:/time/1/tets/points"));
     assert!(!dir.join("two-body.xdmf.tmp").exists());
 }

@@ -9,4 +9,5 @@ mod fuzz_corpus;
 mod hdf5_output;
 mod interrupt;
 mod newton_residual;
+mod paraview;
 mod plot;

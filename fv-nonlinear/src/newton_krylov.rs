@@ -604,8 +604,15 @@ impl NewtonKrylov {
                 let soft = c.params().soft_step;
                 let curvature = report.curvature + report.curvature_noise;
                 if !continuing && report.curvature.is_finite() && report.curvature > 0.0 {
+                    // within the continuation's band only, as the stall
+                    // trigger: farther out the damped motion can carry
+                    // contact surfaces through each other
+                    let band = CONTINUATION_BAND
+                        * params.floor_factor
+                        * (params.tolerance * reference).max(problem.roundoff_floor());
                     if soft > 0.0
                         && lambda < 1.0
+                        && before <= band
                         && curvature < soft * stiffest
                         && c.rescue_at(c.params().soft_shift * stiffest)
                     {

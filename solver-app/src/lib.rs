@@ -27,6 +27,7 @@ pub mod output;
 pub mod plot;
 pub mod predictor;
 pub mod profile;
+pub mod restart;
 pub mod results;
 pub mod run;
 pub mod segregated;

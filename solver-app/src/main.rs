@@ -36,6 +36,15 @@ enum Command {
         /// `[solver] nonlinear` says (newton-krylov, segregated).
         #[arg(long, value_parser = parse_method)]
         nonlinear: Option<fv_nonlinear::NonlinearMethod>,
+        /// Continue an earlier run of this case from its results file
+        /// (RESULTS/<title>/<title>.h5), into the same results; later
+        /// increments of the file are replaced.
+        #[arg(long, value_name = "H5")]
+        restart: Option<PathBuf>,
+        /// With --restart: the increment to continue from (default: the
+        /// last one the file can continue from).
+        #[arg(long, value_name = "K", requires = "restart")]
+        from_increment: Option<usize>,
     },
     /// Validate a case and report its meshes, without solving.
     Check {
@@ -146,6 +155,8 @@ fn main() -> ExitCode {
             threads,
             quiet,
             nonlinear,
+            restart,
+            from_increment,
         } => {
             if let Some(n) = threads {
                 if n == 0 {
@@ -182,6 +193,10 @@ fn main() -> ExitCode {
                 no_files: false,
                 no_cutbacks: false,
                 interrupt,
+                restart: restart.map(|file| solver_app::restart::RestartFrom {
+                    file,
+                    increment: from_increment,
+                }),
             };
             match run_case(&case, &opts) {
                 Ok(out) if out.converged => ExitCode::SUCCESS,

@@ -23,6 +23,17 @@ impl RunLog {
         })
     }
 
+    /// Opens `<dir>/log.txt` to add to it (a continued run).
+    pub fn append(dir: &Path) -> std::io::Result<Self> {
+        let f = std::fs::OpenOptions::new()
+            .create(true)
+            .append(true)
+            .open(dir.join("log.txt"))?;
+        Ok(RunLog {
+            file: Some(BufWriter::new(f)),
+        })
+    }
+
     /// A log that only forwards to `tracing`.
     pub fn none() -> Self {
         RunLog { file: None }
@@ -206,6 +217,21 @@ impl History {
         Ok(History { out })
     }
 
+    /// Opens the file of an earlier run to continue it after increment
+    /// `keep` (`fvc run --restart`): the header and the first `keep` rows
+    /// stay, later rows go.
+    pub fn reopen(dir: &Path, keep: usize) -> std::io::Result<Self> {
+        let path = dir.join("history.csv");
+        let text = std::fs::read_to_string(&path)?;
+        let kept: Vec<&str> = text.lines().take(keep + 1).collect();
+        let mut out = BufWriter::new(File::create(&path)?);
+        for line in kept {
+            writeln!(out, "{line}")?;
+        }
+        out.flush()?;
+        Ok(History { out })
+    }
+
     /// Appends one row (see [`history_row`]) and flushes it.
     pub fn append(&mut self, row: &[f64]) -> std::io::Result<()> {
         for (i, v) in row.iter().enumerate() {
@@ -355,6 +381,8 @@ pub struct Summary {
     /// Explicitly coupled contacts the run coupled implicitly after an
     /// increment failed, one message per switch.
     pub coupling_switched: Vec<String>,
+    /// The increment this run continued from (`--restart`).
+    pub restarted_from: Option<usize>,
 }
 
 /// The physical figures of `summary.json` at one state: the reaction of
@@ -472,6 +500,9 @@ pub fn write_summary(
     }
     if !s.coupling_switched.is_empty() {
         v["coupling_switched"] = serde_json::json!(s.coupling_switched);
+    }
+    if let Some(k) = s.restarted_from {
+        v["restarted_from"] = serde_json::json!(k);
     }
     if let Some(sig) = &s.interrupted {
         v["interrupted_by"] = serde_json::Value::String(sig.clone());

@@ -12,6 +12,7 @@ use crate::mesh_loading::load_mesh;
 use crate::model::{build_bodies, Body};
 use crate::nonlinear_solver::{self, NonlinearSolver};
 use crate::predictor::PathChange;
+use crate::restart::{RestartFrom, Resumed};
 use crate::results::{
     history_columns, history_row, write_summary, History, RunLog, Summary, SummaryFigures,
 };
@@ -54,6 +55,8 @@ pub struct RunOptions {
     /// Asks the run to stop (SIGINT, SIGTERM; [`Interrupt::install`]):
     /// it ends after the write under way with the results so far.
     pub interrupt: Interrupt,
+    /// `--restart`: continue an earlier run of the case from its results.
+    pub restart: Option<RestartFrom>,
 }
 
 /// Result of a run.
@@ -181,6 +184,22 @@ fn run_case_noting(
         NonlinearMethod::NewtonKrylov => SegregatedSolver::check_held(&bodies, &case.solver),
     };
     let mut solver = nonlinear_solver::build(&bodies, &case.solver);
+    // `--restart`: the state of the increment continued from, before the
+    // method sets up on the meshes
+    let resumed = match &opts.restart {
+        Some(from) => {
+            let state = crate::restart::load(from, &bodies, &contacts)?;
+            let file = &from.file;
+            Some(crate::restart::apply(
+                &state,
+                file,
+                &mut bodies,
+                &mut contacts,
+                solver.as_mut(),
+            )?)
+        }
+        None => None,
+    };
     if let Err(e) = held.and_then(|_| solver.prepare(&bodies)) {
         let may_switch = note.is_none() && method == NonlinearMethod::Segregated;
         match unheld_body(case, &e, may_switch) {
@@ -195,40 +214,64 @@ fn run_case_noting(
     let dir = if opts.no_files {
         None
     } else {
-        let base = opts
-            .output
-            .clone()
-            .unwrap_or_else(|| case.output.directory.clone());
-        let dir = base.join(&case.title);
+        let dir = match &opts.restart {
+            Some(from) => crate::restart::results_folder(case, from, opts.output.as_deref())?,
+            None => opts
+                .output
+                .clone()
+                .unwrap_or_else(|| case.output.directory.clone())
+                .join(&case.title),
+        };
         std::fs::create_dir_all(&dir).map_err(|e| unwritable(case, opts, &dir, &e))?;
         Some(dir)
     };
+    let signature = crate::restart::case_signature(&bodies, &contacts);
     let io_err = |e: std::io::Error| RunError::Output(e.to_string());
     let out_err = |e: crate::output::OutputError| RunError::Output(e.to_string());
     // the result files are created before the first increment: a folder
     // that cannot take them is the input's (exit 2), not the solver's
-    let (mut log, mut history, mut fields) = match &dir {
-        Some(d) => (
+    let (mut log, mut history, mut fields) = match (&dir, &resumed) {
+        (Some(d), None) => (
             RunLog::create(d).map_err(|e| unwritable(case, opts, d, &e))?,
             Some(
                 History::create(d, &bodies, &contacts)
                     .map_err(|e| unwritable(case, opts, d, &e))?,
             ),
             Some(
-                FieldOutput::create(d, &case.title, &bodies)
+                FieldOutput::create(d, &case.title, &bodies, &signature)
                     .map_err(|e| unwritable(case, opts, d, &e))?,
             ),
         ),
-        None => (RunLog::none(), None, None),
+        // a continued run: the results so far, cut after its increment
+        (Some(d), Some(r)) => (
+            RunLog::append(d).map_err(|e| unwritable(case, opts, d, &e))?,
+            Some(History::reopen(d, r.k).map_err(|e| unwritable(case, opts, d, &e))?),
+            Some(
+                FieldOutput::reopen(d, &case.title, &bodies, &signature, r.k)
+                    .map_err(|e| unwritable(case, opts, d, &e))?,
+            ),
+        ),
+        (None, _) => (RunLog::none(), None, None),
     };
     let columns = history_columns(&bodies, &contacts);
     let columns: Vec<&str> = columns.iter().map(|s| s.as_str()).collect();
     let cells: usize = bodies.iter().map(|b| b.mesh.n_cells).sum();
+    let resumed = resumed.unwrap_or(Resumed {
+        converged: true,
+        dt_prev: case.time.dt(),
+        ..Default::default()
+    });
     let mut summary = Summary {
         title: case.title.clone(),
-        converged: true,
+        converged: resumed.converged,
         cells,
         nonlinear: method.name(),
+        increments: resumed.k,
+        time_reached: resumed.time,
+        outer_iterations: resumed.outer_iterations,
+        linear_iterations: resumed.linear_iterations,
+        residual_evaluations: resumed.residual_evaluations,
+        restarted_from: opts.restart.as_ref().map(|_| resumed.k),
         ..Default::default()
     };
     log.info(&format!(
@@ -240,6 +283,14 @@ fn run_case_noting(
         case.time.steps
     ));
     log.info(&crate::check::solver_report(case));
+    if let Some(from) = &opts.restart {
+        log.info(&format!(
+            "continued from increment {} (t = {:.6e}) of {}; later increments of the results are replaced",
+            resumed.k,
+            resumed.time,
+            from.file.display()
+        ));
+    }
     if let Some(note) = note {
         log.warn(note);
         summary.coupling_switched.push(note.to_owned());
@@ -254,6 +305,7 @@ fn run_case_noting(
     let tty = std::io::stderr().is_terminal() && !opts.quiet && !opts.no_files;
     let bar = if tty {
         let pb = indicatif::ProgressBar::new(case.time.steps as u64);
+        pb.set_position(resumed.k as u64);
         pb.set_style(
             indicatif::ProgressStyle::with_template(
                 "{spinner} [{elapsed_precise}] {bar:30} increment {pos}/{len} {msg}",
@@ -269,15 +321,15 @@ fn run_case_noting(
         .iter()
         .any(|b| !b.rigid && b.momentum.law.is_updated_lagrangian());
     let linear = is_linear(&bodies, &contacts);
-    let mut t_prev = 0.0;
-    let mut dt_prev = case.time.dt();
+    let mut t_prev = resumed.time;
+    let mut dt_prev = resumed.dt_prev;
     // the change of the prescribed values over a step (predictor), and the
     // values at the end of the step (buffers kept across steps)
     let mut path = PathChange::default();
     let mut path_end = PathChange::default();
     let solve_start = Instant::now();
     let mut cell_iterations = 0.0;
-    let mut switched_coupling = false;
+    let mut switched_coupling = resumed.switched_coupling;
     let may_switch = case.solver.coupling_fallback == crate::case::CouplingFallback::Implicit
         && method == NonlinearMethod::Segregated;
     let mut evaluations = 0usize;
@@ -288,7 +340,7 @@ fn run_case_noting(
         Some(_) => SummaryFigures::of(&bodies, &contacts),
         None => SummaryFigures::default(),
     };
-    for k in 1..=case.time.steps {
+    for k in resumed.k + 1..=case.time.steps {
         if failure.is_some() || interrupted.is_some() {
             break;
         }
@@ -554,6 +606,8 @@ fn run_case_noting(
                 for l in crate::results::full_revolution_lines(&bodies, &contacts) {
                     log.write(&l);
                 }
+                let with_fields =
+                    k % case.output.every == 0 || k == case.time.steps || !info.converged;
                 record_increment(
                     &mut history,
                     &mut fields,
@@ -564,9 +618,7 @@ fn run_case_noting(
                         outer_iterations: info.outer_iterations,
                         residual: info.residual,
                         converged: info.converged,
-                        with_fields: k % case.output.every == 0
-                            || k == case.time.steps
-                            || !info.converged,
+                        with_fields,
                     },
                     &bodies,
                     &contacts,
@@ -638,6 +690,23 @@ fn run_case_noting(
                         }
                     }
                 }
+                // the state the next increment starts from, with the fields
+                if let (true, true, None, Some(w)) = (with_fields, accepted, &failure, &mut fields)
+                {
+                    let run = Resumed {
+                        k,
+                        time: t,
+                        outer_iterations: summary.outer_iterations,
+                        linear_iterations: summary.linear_iterations,
+                        residual_evaluations: summary.residual_evaluations,
+                        wall_seconds: resumed.wall_seconds + start.elapsed().as_secs_f64(),
+                        converged: summary.converged,
+                        switched_coupling,
+                        dt_prev,
+                    };
+                    let state = crate::restart::capture(&run, &bodies, &contacts, solver.as_ref());
+                    w.write_restart(k, t, state).map_err(out_err)?;
+                }
             }
             Err(e) => {
                 let mut msg = format!("increment {k}: {e}");
@@ -680,7 +749,7 @@ fn run_case_noting(
         pb.finish_and_clear();
     }
     let solve_seconds = solve_start.elapsed().as_secs_f64();
-    summary.wall_seconds = start.elapsed().as_secs_f64();
+    summary.wall_seconds = resumed.wall_seconds + start.elapsed().as_secs_f64();
     if let Some(f) = &failure {
         summary.converged = false;
         summary.failure = Some(f.clone());

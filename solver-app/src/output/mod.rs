@@ -34,9 +34,11 @@
 //! ```
 mod datasets;
 mod hdf5_writer;
+mod restart_file;
 mod xdmf;
 
 pub use hdf5_writer::ResultsWriter;
+pub use restart_file::{read_restart_index, read_restart_state, RestartIndex};
 
 use std::path::PathBuf;
 

@@ -67,6 +67,12 @@ impl StateArrays {
         self.put(name, 9, v.iter().flat_map(|x| x.iter().copied()).collect());
     }
 
+    /// Removes array `name` and returns it, if present.
+    pub fn take(&mut self, name: &str) -> Option<StateArray> {
+        let i = self.arrays.iter().position(|a| a.name == name)?;
+        Some(self.arrays.remove(i))
+    }
+
     /// Array `name`, if present.
     pub fn get(&self, name: &str) -> Option<&StateArray> {
         self.arrays.iter().find(|a| a.name == name)

@@ -100,5 +100,15 @@ pub fn read_restart_state(path: &Path, k: usize) -> Result<StateArrays, OutputEr
     let g = file.group(&kp).map_err(|e| err(path, &kp, e))?;
     let mut out = StateArrays::new();
     collect(path, &g, &format!("{kp}/"), &mut out)?;
+    // a deformable body's cell displacement is its `displacement` field
+    if g.link_exists("body") {
+        let bodies = g.group("body").map_err(|e| err(path, &kp, e))?;
+        for name in bodies.member_names().map_err(|e| err(path, &kp, e))? {
+            let dp = format!("/time/{k}/{name}/displacement");
+            let ds = file.dataset(&dp).map_err(|e| err(path, &dp, e))?;
+            let values: Vec<f64> = ds.read_raw().map_err(|e| err(path, &dp, e))?;
+            out.put(format!("body/{name}/momentum/u"), 3, values);
+        }
+    }
     Ok(out)
 }

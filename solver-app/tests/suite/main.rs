@@ -10,3 +10,4 @@ mod hdf5_output;
 mod interrupt;
 mod newton_residual;
 mod plot;
+mod restart;

@@ -5,6 +5,8 @@
 //! /restart/<k>             attr time; the state at the end of increment k
 //! /restart/<k>/<a>/<b>/…   one dataset per state array (n_rows × columns, or n_rows)
 //! ```
+//! A deformable body's cell displacement is not repeated there: it is
+//! `/time/<k>/<body>/displacement`.
 //! written next to `/time/<k>` for every increment whose fields are
 //! written, compressed like the fields. [`ResultsWriter::reopen`] opens a
 //! file to continue it after increment K: what the file holds beyond K

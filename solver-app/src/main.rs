@@ -126,13 +126,15 @@ fn main() -> ExitCode {
                 Ok((bodies, contacts)) => {
                     print!("{}", solver_app::check::mesh_report(&case, &bodies));
                     println!("{}", solver_app::check::solver_report(&case));
+                    // the report is the result (standard output); notes
+                    // are diagnostics (standard error), as under `fvc run`
                     for n in bodies.iter().flat_map(|b| &b.setup_notes) {
-                        println!("note: {n}");
+                        eprintln!("note: {n}");
                     }
                     match check_support(&case, bodies, contacts) {
                         Ok(note) => {
                             if let Some(note) = note {
-                                println!("note: {note}");
+                                eprintln!("note: {note}");
                             }
                             println!("case is valid");
                             ExitCode::SUCCESS

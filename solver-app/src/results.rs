@@ -2,6 +2,7 @@
 //! (CASE_FORMAT.md, "Results"). Each is written so that a run killed at any
 //! moment leaves what was already written readable: history rows are
 //! flushed per increment, the summary is replaced atomically.
+use crate::words::Num;
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -42,6 +43,14 @@ impl RunLog {
     /// Writes an informational line.
     pub fn info(&mut self, msg: &str) {
         tracing::info!("{msg}");
+        self.write(msg);
+    }
+
+    /// Writes a result (the final figures, where the results are): on
+    /// standard output, where `fvc run … > file` keeps them, and to the
+    /// file; progress and diagnostics go to standard error.
+    pub fn result(&mut self, msg: &str) {
+        println!("{msg}");
         self.write(msg);
     }
 
@@ -436,9 +445,12 @@ impl SummaryFigures {
     pub fn report(&self) -> String {
         let num = |v: &serde_json::Value| v.as_f64().unwrap_or(f64::NAN);
         let vec3 = |v: &serde_json::Value| {
-            // + 0.0: no "-0.0000e0" for a component that is zero
-            let c: Vec<String> = (0..3)
-                .map(|i| format!("{:.4e}", num(&v[i]) + 0.0))
+            // a component 1e-9 of the largest is round-off: 0
+            let c = [num(&v[0]), num(&v[1]), num(&v[2])];
+            let big = c.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            let c: Vec<String> = c
+                .iter()
+                .map(|&x| Num(if x.abs() < 1e-9 * big { 0.0 } else { x }).to_string())
                 .collect();
             format!("({})", c.join(", "))
         };
@@ -451,14 +463,14 @@ impl SummaryFigures {
         }
         for c in &self.contacts {
             lines.push(format!(
-                "  contact {} – {}: normal force {:.4e}, tangential force {}, peak pressure {:.4e}, contact area {:.4e}, largest penetration {:.3e}",
+                "  contact {} – {}: normal force {}, tangential force {}, peak pressure {}, contact area {}, largest penetration {}",
                 c["master"].as_str().unwrap_or("?"),
                 c["slave"].as_str().unwrap_or("?"),
-                num(&c["normal_force"]),
+                Num(num(&c["normal_force"])),
                 vec3(&c["tangential_force"]),
-                num(&c["max_pressure"]),
-                num(&c["contact_area"]),
-                num(&c["max_penetration"]),
+                Num(num(&c["max_pressure"])),
+                Num(num(&c["contact_area"])),
+                Num(num(&c["max_penetration"])),
             ));
         }
         if lines.is_empty() {

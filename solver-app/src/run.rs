@@ -12,11 +12,13 @@ use crate::mesh_loading::load_mesh;
 use crate::model::{build_bodies, Body};
 use crate::nonlinear_solver::{self, NonlinearSolver};
 use crate::predictor::PathChange;
+use crate::progress::Progress;
 use crate::restart::{RestartFrom, Resumed};
 use crate::results::{
     history_columns, history_row, write_summary, History, RunLog, Summary, SummaryFigures,
 };
 use crate::segregated::{IncrementInfo, SegregatedSolver, SolveError};
+use crate::words::{count, duration, Num};
 use fv_nonlinear::NonlinearMethod;
 
 /// Largest number of times a failed increment is halved and redone.
@@ -275,19 +277,19 @@ fn run_case_noting(
         ..Default::default()
     };
     log.info(&format!(
-        "case '{}' ({}): {} bodies, {} cells, {} increments",
+        "case '{}' ({}): {}, {}, {}",
         case.title,
         case.source.path.display(),
-        bodies.len(),
-        cells,
-        case.time.steps
+        count(bodies.len(), "body", "bodies"),
+        count(cells, "cell", "cells"),
+        count(case.time.steps, "increment", "increments")
     ));
     log.info(&crate::check::solver_report(case));
     if let Some(from) = &opts.restart {
         log.info(&format!(
-            "continued from increment {} (t = {:.6e}) of {}; later increments of the results are replaced",
+            "continued from increment {} (t = {}) of {}; later increments of the results are replaced",
             resumed.k,
-            resumed.time,
+            Num(resumed.time),
             from.file.display()
         ));
     }
@@ -303,19 +305,7 @@ fn run_case_noting(
     }
 
     let tty = std::io::stderr().is_terminal() && !opts.quiet && !opts.no_files;
-    let bar = if tty {
-        let pb = indicatif::ProgressBar::new(case.time.steps as u64);
-        pb.set_position(resumed.k as u64);
-        pb.set_style(
-            indicatif::ProgressStyle::with_template(
-                "{spinner} [{elapsed_precise}] {bar:30} increment {pos}/{len} {msg}",
-            )
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-        );
-        Some(pb)
-    } else {
-        None
-    };
+    let mut progress = Progress::new(tty, resumed.k, case.time.steps);
 
     let reassemble_every_increment = bodies
         .iter()
@@ -349,6 +339,7 @@ fn run_case_noting(
             break;
         }
         let t = case.time.time_at(k);
+        let increment_clock = Instant::now();
         // the increment, in sub-steps when an attempt fails (cut-back)
         // converged while every sub-step is
         let mut total = IncrementInfo {
@@ -410,11 +401,7 @@ fn run_case_noting(
                 if trace_outer {
                     eprintln!("  outer {outer}: residual {res:.3e}");
                 }
-                if let Some(pb) = &bar {
-                    if outer % 10 == 0 {
-                        pb.set_message(format!("outer {outer} residual {res:.2e}"));
-                    }
-                }
+                progress.iteration(outer, res);
                 match opts.interrupt.requested() {
                     Some(_) => ControlFlow::Break(()),
                     None => ControlFlow::Continue(()),
@@ -450,14 +437,14 @@ fn run_case_noting(
                         total.residual_evaluations += info.residual_evaluations;
                         if info.coupling_stalled {
                             format!(
-                                "{} after {} outer iterations",
+                                "{} after {}",
                                 info.shortfall(case.solver.tolerance),
-                                info.outer_iterations
+                                count(info.outer_iterations, "outer iteration", "outer iterations")
                             )
                         } else {
                             format!(
-                                "no convergence in {} outer iterations",
-                                info.outer_iterations
+                                "no convergence in {}",
+                                count(info.outer_iterations, "outer iteration", "outer iterations")
                             )
                         }
                     }
@@ -470,7 +457,9 @@ fn run_case_noting(
                 contacts.couple_implicitly(&switch, &mut bodies);
                 switched_coupling = true;
                 let note = format!(
-                    "increment {k}: step t = {t0:.6e} → {t1:.6e} failed with explicit coupling ({why}); [[contact]] {} coupled implicitly from here on (thesis §4.5), the step redone",
+                    "increment {k}: step t = {} → {} failed with explicit coupling ({why}); [[contact]] {} coupled implicitly from here on (thesis §4.5), the step redone",
+                    Num(t0),
+                    Num(t1),
                     contact_names(case, &switch)
                 );
                 log.warn(&note);
@@ -485,14 +474,16 @@ fn run_case_noting(
                 !has_inertia && path.kinematic.iter().chain(&path.loads).all(|x| *x == 0.0);
             if let (true, Ok(info)) = (failed && constant_path && !opts.no_cutbacks, &attempt) {
                 log.warn(&format!(
-                    "increment {k}: no convergence in {} outer iterations ({}); not redone in smaller steps: no prescribed value changes over the step t = {t0:.6e} → {t1:.6e} (a constant value is applied in full from the first increment; give a load or a displacement as a table to ramp it), so a smaller step is the same problem",
-                    info.outer_iterations,
-                    info.shortfall(case.solver.tolerance)
+                    "increment {k}: no convergence in {} ({}); not redone in smaller steps: no prescribed value changes over the step t = {} → {} (a constant value is applied in full from the first increment; give a load or a displacement as a table to ramp it), so a smaller step is the same problem",
+                    count(info.outer_iterations, "outer iteration", "outer iterations"),
+                    info.shortfall(case.solver.tolerance),
+                    Num(t0),
+                    Num(t1)
                 ));
             } else if let (true, Ok(info)) = (failed && linear && !opts.no_cutbacks, &attempt) {
                 log.warn(&format!(
-                    "increment {k}: no convergence in {} outer iterations ({}); not redone in smaller steps: the problem is linear (small strain, Hooke's law, no contact, no force control, no inertia), and its outer iteration converges no faster for a smaller load step; raise [solver] max_outer, or loosen tolerance",
-                    info.outer_iterations,
+                    "increment {k}: no convergence in {} ({}); not redone in smaller steps: the problem is linear (small strain, Hooke's law, no contact, no force control, no inertia), and its outer iteration converges no faster for a smaller load step; raise [solver] max_outer, or loosen tolerance",
+                    count(info.outer_iterations, "outer iteration", "outer iterations"),
                     info.shortfall(case.solver.tolerance)
                 ));
             } else if let (true, Err(e @ SolveError::Linear(_))) =
@@ -505,8 +496,8 @@ fn run_case_noting(
             } else if failed && !opts.no_cutbacks && cuts < MAX_CUTBACKS {
                 let why = match &attempt {
                     Ok(info) => format!(
-                        "no convergence in {} outer iterations",
-                        info.outer_iterations
+                        "no convergence in {}",
+                        count(info.outer_iterations, "outer iteration", "outer iterations")
                     ),
                     Err(e) => e.to_string(),
                 };
@@ -525,7 +516,10 @@ fn run_case_noting(
                 cuts += 1;
                 h *= 0.5;
                 log.warn(&format!(
-                    "increment {k}: step t = {t0:.6e} → {t1:.6e} failed ({why}); redone in steps of {h:.3e}"
+                    "increment {k}: step t = {} → {} failed ({why}); redone in steps of {}",
+                    Num(t0),
+                    Num(t1),
+                    Num(h)
                 ));
                 continue;
             }
@@ -549,8 +543,10 @@ fn run_case_noting(
                         // `continue`: keep the unconverged sub-step and go on
                         // to the end of the increment
                         log.warn(&format!(
-                            "increment {k}: sub-step t = {t0:.6e} → {t1:.6e} did not converge in {} outer iterations ({}); continuing",
-                            info.outer_iterations,
+                            "increment {k}: sub-step t = {} → {} did not converge in {} ({}); continuing",
+                            Num(t0),
+                            Num(t1),
+                            count(info.outer_iterations, "outer iteration", "outer iterations"),
                             info.shortfall(case.solver.tolerance)
                         ));
                     }
@@ -588,16 +584,27 @@ fn run_case_noting(
                 cell_iterations += (info.outer_iterations * solver.n_unknowns()) as f64;
                 evaluations += info.residual_evaluations;
                 summary.residual_evaluations += info.residual_evaluations;
+                let seconds = increment_clock.elapsed().as_secs_f64();
                 let line = format!(
-                    "increment {k}/{} t = {t:.6e}: {} outer iterations, residual {:.3e}, {} linear iterations{}",
+                    "increment {k}/{} t = {}: {}, residual {:.3e}, {}, {}{}",
                     case.time.steps,
-                    info.outer_iterations,
+                    Num(t),
+                    count(info.outer_iterations, "outer iteration", "outer iterations"),
                     info.residual,
-                    info.linear_iterations,
-                    if info.converged { "" } else { " (NOT converged)" }
+                    count(
+                        info.linear_iterations,
+                        "linear iteration",
+                        "linear iterations"
+                    ),
+                    duration(seconds),
+                    if info.converged {
+                        ""
+                    } else {
+                        " (NOT converged)"
+                    }
                 );
-                if let Some(pb) = &bar {
-                    pb.inc(1);
+                if progress.is_shown() {
+                    progress.increment_done(k, seconds);
                     log.write(&line);
                 } else if opts.quiet || !opts.no_files {
                     log.info(&line);
@@ -676,8 +683,8 @@ fn run_case_noting(
                         String::new()
                     };
                     let msg = format!(
-                        "increment {k} did not converge in {} outer iterations{attempts} ({})",
-                        info.outer_iterations,
+                        "increment {k} did not converge in {}{attempts} ({})",
+                        count(info.outer_iterations, "outer iteration", "outer iterations"),
                         info.shortfall(case.solver.tolerance)
                     );
                     match case.solver.on_nonconvergence {
@@ -735,7 +742,8 @@ fn run_case_noting(
                     summary.linear_iterations += total.linear_iterations;
                     summary.time_reached = t0;
                     msg.push_str(&format!(
-                        "; its last converged sub-step, t = {t0:.6e}, is written as increment {k}"
+                        "; its last converged sub-step, t = {}, is written as increment {k}",
+                        Num(t0)
                     ));
                 }
                 match e {
@@ -745,9 +753,7 @@ fn run_case_noting(
             }
         }
     }
-    if let Some(pb) = &bar {
-        pb.finish_and_clear();
-    }
+    progress.finish();
     let solve_seconds = solve_start.elapsed().as_secs_f64();
     summary.wall_seconds = resumed.wall_seconds + start.elapsed().as_secs_f64();
     if let Some(f) = &failure {
@@ -763,10 +769,10 @@ fn run_case_noting(
     }
     if cell_iterations > 0.0 {
         log.info(&format!(
-            "cost: {:.3} µs per cell per outer iteration; {:.1} outer iterations per increment; {} linear iterations in all",
+            "cost: {:.3} µs per cell per outer iteration; {:.1} outer iterations per increment; {} in all",
             solve_seconds * 1e6 / cell_iterations,
             summary.outer_iterations as f64 / summary.increments.max(1) as f64,
-            summary.linear_iterations
+            count(summary.linear_iterations, "linear iteration", "linear iterations")
         ));
         if method == NonlinearMethod::NewtonKrylov && evaluations > 0 {
             log.info(&format!(
@@ -792,18 +798,18 @@ fn run_case_noting(
         write_summary(d, &summary, &figures).map_err(io_err)?;
         let physics = figures.report();
         if !physics.is_empty() {
-            log.info(&physics);
+            log.result(&physics);
         }
         match interrupted {
             Some(sig) => log.warn(&format!(
-                "interrupted by {} after increment {}/{} (t = {:.6e}): results so far in {}",
+                "interrupted by {} after increment {}/{} (t = {}): results so far in {}",
                 signal_name(sig),
                 summary.increments,
                 case.time.steps,
-                summary.time_reached,
+                Num(summary.time_reached),
                 d.display()
             )),
-            None => log.info(&format!("results in {}", d.display())),
+            None => log.result(&format!("results in {}", d.display())),
         }
     } else if let Some(sig) = interrupted {
         log.warn(&format!(
@@ -879,12 +885,15 @@ fn short_tables(case: &Case) -> Vec<String> {
     let range = |key: String, first: f64, last: f64, out: &mut Vec<String>| {
         if last < end * (1.0 - 1e-9) {
             out.push(format!(
-                "{key}: the table ends at t = {last:.6e}, before [time] end = {end:.6e}; its last value is held from there"
+                "{key}: the table ends at t = {}, before [time] end = {}; its last value is held from there",
+                Num(last),
+                Num(end)
             ));
         }
         if first > 1e-12 * end.abs() {
             out.push(format!(
-                "{key}: the table starts at t = {first:.6e}; its first value is held before"
+                "{key}: the table starts at t = {}; its first value is held before",
+                Num(first)
             ));
         }
     };

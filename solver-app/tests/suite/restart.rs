@@ -105,7 +105,7 @@ fn run_and_continue(method: &str) -> (Vec<Vec<f64>>, Vec<Vec<f64>>, serde_json::
     assert_eq!(code, 0, "{err}");
     let log = std::fs::read_to_string(res.join("log.txt")).unwrap();
     assert!(
-        log.contains("continued from increment 4 (t = 5.000000e-1)"),
+        log.contains("continued from increment 4 (t = 0.5)"),
         "{log}"
     );
     let summary: serde_json::Value =

@@ -77,6 +77,7 @@ enum Job {
         time: f64,
         state: fv_mesh::StateArrays,
     },
+    DropRestart(usize),
 }
 
 /// A [`ResultsWriter`] fed through a channel by the solver's thread.
@@ -101,6 +102,7 @@ impl BackgroundWriter {
                             writer.write_history(&columns, &row)?;
                         }
                         Job::Restart { k, time, state } => writer.write_restart(k, time, &state)?,
+                        Job::DropRestart(k) => writer.drop_restart(k)?,
                     }
                 }
                 writer.close()
@@ -134,6 +136,11 @@ impl BackgroundWriter {
         state: fv_mesh::StateArrays,
     ) -> Result<(), OutputError> {
         self.send(Job::Restart { k, time, state })
+    }
+
+    /// Hands over the removal of the restart state of increment `k`.
+    pub fn drop_restart(&mut self, k: usize) -> Result<(), OutputError> {
+        self.send(Job::DropRestart(k))
     }
 
     fn send(&mut self, job: Job) -> Result<(), OutputError> {

@@ -287,6 +287,12 @@ impl FieldOutput {
         })
     }
 
+    /// Removes the restart state of increment `k` (`[output]
+    /// restart_every`).
+    pub fn drop_restart(&mut self, k: usize) -> Result<(), OutputError> {
+        self.writer.drop_restart(k)
+    }
+
     /// Appends one row to `/history`.
     pub fn write_history(&mut self, columns: &[&str], row: &[f64]) -> Result<(), OutputError> {
         self.writer.write_history(columns, row)

@@ -320,6 +320,8 @@ fn run_case_noting(
     let solve_start = Instant::now();
     let mut cell_iterations = 0.0;
     let mut switched_coupling = resumed.switched_coupling;
+    // the increment of the last restart state written
+    let mut last_state = opts.restart.as_ref().map(|_| resumed.k);
     let may_switch = case.solver.coupling_fallback == crate::case::CouplingFallback::Implicit
         && method == NonlinearMethod::Segregated;
     let mut evaluations = 0usize;
@@ -713,6 +715,12 @@ fn run_case_noting(
                     };
                     let state = crate::restart::capture(&run, &bodies, &contacts, solver.as_ref());
                     w.write_restart(k, t, state).map_err(out_err)?;
+                    // the last state stays, and every `restart_every`-th
+                    if let Some(prev) = last_state.replace(k) {
+                        if prev % case.output.restart_every != 0 {
+                            w.drop_restart(prev).map_err(out_err)?;
+                        }
+                    }
                 }
             }
             Err(e) => {

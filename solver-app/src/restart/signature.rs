@@ -43,7 +43,7 @@ pub fn case_signature(bodies: &[Body], contacts: &ContactSet) -> Vec<String> {
             )
         };
         v.push(format!(
-            "contact {}: master = {}, slave = {}",
+            "contact {}: pair = {} – {}",
             i + 1,
             side(&c.master),
             side(&c.slave)
@@ -95,7 +95,7 @@ mod tests {
         let saved = vec![
             "body a: cells = 10".to_owned(),
             "body a: points = 22".to_owned(),
-            "contact 1: master = a/top, slave = b/bottom".to_owned(),
+            "contact 1: pair = a/top – b/bottom".to_owned(),
         ];
         let now = vec![
             "body a: cells = 12".to_owned(),
@@ -110,9 +110,7 @@ mod tests {
             "{e}"
         );
         assert!(
-            e.contains(
-                "contact 1: master = a/top, slave = b/bottom in the file, absent from the case"
-            ),
+            e.contains("contact 1: pair: a/top – b/bottom in the file, absent from the case"),
             "{e}"
         );
         assert!(

@@ -45,7 +45,8 @@ fn ironing_case() -> String {
         assert!(case.contains(from), "the example no longer has {from}");
         case = case.replace(from, &to);
     }
-    case
+    // states kept for increments 2, 4, 6 and the last
+    case + "\n[output]\nrestart_every = 2\n"
 }
 
 /// The rows of `history.csv`, as numbers.
@@ -90,6 +91,20 @@ fn run_and_continue(method: &str) -> (Vec<Vec<f64>>, Vec<Vec<f64>>, serde_json::
     let res = dir.path().join("out/ironing");
     let whole = history(&res);
     let file = h5(dir.path(), "ironing");
+    let kept: Vec<usize> = {
+        let f = hdf5::File::open(&file).unwrap();
+        let mut k: Vec<usize> = f
+            .group("restart")
+            .unwrap()
+            .member_names()
+            .unwrap()
+            .iter()
+            .map(|n| n.parse().unwrap())
+            .collect();
+        k.sort_unstable();
+        k
+    };
+    assert_eq!(kept, [2, 4, 6, 7], "restart_every = 2 and the last");
     let (code, err) = run(
         dir.path(),
         &case,
@@ -199,7 +214,18 @@ fn a_case_that_does_not_fit_the_results_is_refused() {
     );
     assert_eq!(code, 2, "{err}");
     assert!(
-        err.contains("--from-increment 3: the file does not hold it; the increments it can continue from are 1, 2"),
+        err.contains("--from-increment 3: the file does not hold it; the increments it can continue from are 2"),
+        "{err}"
+    );
+    // the state of increment 1 went when that of 2 came (restart_every = 10)
+    let (code, err) = run(
+        dir.path(),
+        &case,
+        &["--restart", f, "--from-increment", "1"],
+    );
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("--from-increment 1: its fields are written but not its state"),
         "{err}"
     );
     let missing = dir.path().join("out/block/nothing/block.h5");

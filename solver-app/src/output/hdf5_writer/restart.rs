@@ -99,6 +99,21 @@ impl ResultsWriter {
         self.file.flush().at(|| l.to_string())
     }
 
+    /// Removes the state of increment `k` (`[output] restart_every`: only
+    /// some are kept); its space goes to the states written next.
+    pub fn drop_restart(&mut self, k: usize) -> Result<(), OutputError> {
+        let l = self.label.clone();
+        if !self.file.link_exists("restart") {
+            return Ok(());
+        }
+        let root = self.file.group("restart").at(|| format!("{l}:/restart"))?;
+        if root.link_exists(&k.to_string()) {
+            root.unlink(&k.to_string())
+                .at(|| format!("{l}:/restart/{k}"))?;
+        }
+        self.file.flush().at(|| l.clone())
+    }
+
     /// Opens `<dir>/<title>.h5`, written for `bodies` by an earlier run, to
     /// continue it after increment `keep`: the fields, restart states,
     /// index entries and history rows of later increments are removed

@@ -59,7 +59,7 @@ impl Progress {
     /// `residual` (shown every tenth).
     pub fn iteration(&self, outer: usize, residual: f64) {
         if let Some(pb) = &self.bar {
-            if outer % 10 == 0 {
+            if outer.is_multiple_of(10) {
                 pb.set_message(format!("iteration {outer}, residual {residual:.2e}"));
             }
         }

@@ -41,6 +41,13 @@ pub trait ContactAlgorithm: Send {
     /// Forgets the friction history (new problem).
     fn reset(&mut self);
 
+    /// Restart: puts the committed friction history under `prefix`
+    /// (`fvc run --restart`).
+    fn save_state(&self, prefix: &str, out: &mut fv_mesh::StateArrays);
+
+    /// Restart: takes back the history of [`Self::save_state`].
+    fn restore_state(&mut self, prefix: &str, state: &fv_mesh::StateArrays) -> Result<(), String>;
+
     /// Which algorithm this is.
     fn kind(&self) -> ContactAlgorithmKind;
 

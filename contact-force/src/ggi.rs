@@ -17,14 +17,14 @@ use std::ops::{AddAssign, Mul};
 /// reused from call to call.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct GgiWeights {
-    master_offsets: Vec<u32>,
-    master_slaves: Vec<u32>,
-    master_overlap: Vec<Real>,
-    slave_offsets: Vec<u32>,
-    slave_masters: Vec<u32>,
-    slave_overlap: Vec<Real>,
-    master_area: Vec<Real>,
-    slave_area: Vec<Real>,
+    pub(crate) master_offsets: Vec<u32>,
+    pub(crate) master_slaves: Vec<u32>,
+    pub(crate) master_overlap: Vec<Real>,
+    pub(crate) slave_offsets: Vec<u32>,
+    pub(crate) slave_masters: Vec<u32>,
+    pub(crate) slave_overlap: Vec<Real>,
+    pub(crate) master_area: Vec<Real>,
+    pub(crate) slave_area: Vec<Real>,
 }
 
 impl GgiWeights {

@@ -6,8 +6,8 @@ use fv_mesh::{Real, Surface, Vector};
 /// Per-pair state kept by the algorithms between calls.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct IncrementState {
-    reference_master: Vec<Vector>,
-    reference_slave: Vec<Vector>,
+    pub(crate) reference_master: Vec<Vector>,
+    pub(crate) reference_slave: Vec<Vector>,
     /// Point displacement increments of the master surface (current − reference).
     pub du_master: Vec<Vector>,
     /// Point displacement increments of the slave surface.
@@ -32,7 +32,7 @@ pub(crate) struct IncrementState {
     pub start_gap_slave: Vec<Real>,
     /// The start gaps hold values (committed, or recorded at the first
     /// call of the first increment).
-    start_known: bool,
+    pub(crate) start_known: bool,
     /// The [`contact_share`] of every master and slave face at the last
     /// call that was not frozen ([`IncrementState::freeze_shares`]).
     share_master: Vec<Real>,

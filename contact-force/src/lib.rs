@@ -44,6 +44,7 @@ mod increment_state;
 mod occluded_volume;
 mod penalty;
 mod pointwise;
+mod restart;
 mod segment_to_segment;
 mod smoothed_master;
 mod sutherland_hodgman;

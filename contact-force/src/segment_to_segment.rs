@@ -635,6 +635,14 @@ impl ContactAlgorithm for SegmentToSegment {
         self.state.reset();
     }
 
+    fn save_state(&self, prefix: &str, out: &mut fv_mesh::StateArrays) {
+        self.state.save_state(prefix, out);
+    }
+
+    fn restore_state(&mut self, prefix: &str, s: &fv_mesh::StateArrays) -> Result<(), String> {
+        self.state.restore_state(prefix, s)
+    }
+
     fn set_face_shifts(&mut self, master: &[Vector], slave: &[Vector]) {
         self.shifts.set(master, slave);
     }

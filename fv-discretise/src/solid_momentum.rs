@@ -40,6 +40,7 @@
 //! With inertia (3.11) the cell balance gains −m_P ü_P (backward Euler, the
 //! mass m_P = ρ_P Ω_P conserved) and the matrix diagonal m_P/Δt².
 mod jacobian;
+mod restart;
 mod state_function;
 
 pub use jacobian::StateNode;

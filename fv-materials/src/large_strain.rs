@@ -206,6 +206,41 @@ impl MaterialState {
     pub fn trial_deformation_gradient(&self) -> &[Tensor] {
         &self.trial.f
     }
+
+    /// Restart: the committed F, b̄_e (empty for elastic models) and ε̄_p
+    /// of every cell, to be given back to [`Self::restore_committed`].
+    pub fn committed_parts(&self) -> (&[Tensor], &[Tensor], &[f64]) {
+        let c = &self.committed;
+        (&c.f, &c.be_bar, &c.eps_p)
+    }
+
+    /// Restart: sets the committed state (each slice as long as
+    /// [`Self::committed_parts`] gives it, else an error naming the part)
+    /// and the trial state equal to it.
+    pub fn restore_committed(
+        &mut self,
+        f: &[Tensor],
+        be_bar: &[Tensor],
+        eps_p: &[f64],
+    ) -> Result<(), String> {
+        let c = &mut self.committed;
+        for (name, got, expected) in [
+            ("f", f.len(), c.f.len()),
+            ("be_bar", be_bar.len(), c.be_bar.len()),
+            ("eps_p", eps_p.len(), c.eps_p.len()),
+        ] {
+            if got != expected {
+                return Err(format!(
+                    "material state '{name}': {got} values, expected {expected}"
+                ));
+            }
+        }
+        c.f.copy_from_slice(f);
+        c.be_bar.copy_from_slice(be_bar);
+        c.eps_p.copy_from_slice(eps_p);
+        self.discard();
+        Ok(())
+    }
 }
 
 /// A constitutive law in the incremental updated Lagrangian form

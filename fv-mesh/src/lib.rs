@@ -17,6 +17,7 @@ mod gmsh;
 mod openfoam;
 mod poly_mesh;
 mod quality;
+mod state_arrays;
 mod surface;
 mod wedge_point_constraint;
 
@@ -32,6 +33,7 @@ pub use gmsh::{read_gmsh, read_gmsh_bytes};
 pub use openfoam::{face_connected_regions, read_polymesh, read_polymesh_files, select_body};
 pub use poly_mesh::{polygon_area_vector, CellZone, Patch, PolyMesh};
 pub use quality::MeshQuality;
+pub use state_arrays::{StateArray, StateArrays};
 pub use surface::{PointNormalWeighting, Surface, NO_FACE};
 pub use wedge_point_constraint::{is_planar_patch, PointConstraint, WedgePointConstraint};
 

@@ -68,7 +68,16 @@ pub struct OwnedIncrement {
 
 enum Job {
     Increment(OwnedIncrement),
-    History { columns: Vec<String>, row: Vec<f64> },
+    History {
+        columns: Vec<String>,
+        row: Vec<f64>,
+    },
+    Restart {
+        k: usize,
+        time: f64,
+        state: fv_mesh::StateArrays,
+    },
+    DropRestart(usize),
 }
 
 /// A [`ResultsWriter`] fed through a channel by the solver's thread.
@@ -92,6 +101,8 @@ impl BackgroundWriter {
                             let columns: Vec<&str> = columns.iter().map(String::as_str).collect();
                             writer.write_history(&columns, &row)?;
                         }
+                        Job::Restart { k, time, state } => writer.write_restart(k, time, &state)?,
+                        Job::DropRestart(k) => writer.drop_restart(k)?,
                     }
                 }
                 writer.close()
@@ -115,6 +126,21 @@ impl BackgroundWriter {
             columns: columns.iter().map(|c| c.to_string()).collect(),
             row: row.to_vec(),
         })
+    }
+
+    /// Hands over the restart state of increment `k` (written after it).
+    pub fn write_restart(
+        &mut self,
+        k: usize,
+        time: f64,
+        state: fv_mesh::StateArrays,
+    ) -> Result<(), OutputError> {
+        self.send(Job::Restart { k, time, state })
+    }
+
+    /// Hands over the removal of the restart state of increment `k`.
+    pub fn drop_restart(&mut self, k: usize) -> Result<(), OutputError> {
+        self.send(Job::DropRestart(k))
     }
 
     fn send(&mut self, job: Job) -> Result<(), OutputError> {

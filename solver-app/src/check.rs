@@ -3,29 +3,39 @@ use std::fmt::Write;
 
 use crate::case::Case;
 use crate::model::Body;
+use crate::words::{count, Num};
 use fv_mesh::MeshQuality;
 
 /// The mesh report printed by `fvc check`.
 pub fn mesh_report(case: &Case, bodies: &[Body]) -> String {
     let mut s = String::new();
-    let _ = writeln!(s, "case '{}': {} bodies", case.title, bodies.len());
+    let _ = writeln!(
+        s,
+        "case '{}': {}",
+        case.title,
+        count(bodies.len(), "body", "bodies")
+    );
     for b in bodies {
         let q = MeshQuality::new(&b.mesh, &b.geom);
         let _ = writeln!(
             s,
-            "body '{}'{}: {} cells, {} faces ({} internal), {} points, volume {:.6e}",
+            "body '{}'{}: {}, {} ({} internal), {}, volume {}",
             b.name,
             if b.rigid { " (rigid)" } else { "" },
-            b.mesh.n_cells,
-            b.mesh.n_faces(),
+            count(b.mesh.n_cells, "cell", "cells"),
+            count(b.mesh.n_faces(), "face", "faces"),
             b.mesh.n_internal_faces(),
-            b.mesh.n_points(),
-            b.geom.total_volume()
+            count(b.mesh.n_points(), "point", "points"),
+            Num(b.geom.total_volume())
         );
         let _ = writeln!(
             s,
-            "  non-orthogonality: max {:.2}°, mean {:.2}°; max skewness {:.3}; cell volume {:.3e} … {:.3e}",
-            q.max_non_orthogonality, q.mean_non_orthogonality, q.max_skewness, q.min_volume, q.max_volume
+            "  non-orthogonality: max {:.2}°, mean {:.2}°; max skewness {:.3}; cell volume {} … {}",
+            q.max_non_orthogonality,
+            q.mean_non_orthogonality,
+            q.max_skewness,
+            Num(q.min_volume),
+            Num(q.max_volume)
         );
         let _ = writeln!(s, "  patches ({}):", b.mesh.patches.len());
         for (p, spec) in b.mesh.patches.iter().zip(&b.patch_specs) {
@@ -52,8 +62,12 @@ pub fn mesh_report(case: &Case, bodies: &[Body]) -> String {
             };
             let _ = writeln!(
                 s,
-                "    {:<24} {:>8} faces  area {:.6e}  {}",
-                p.name, p.size, area, cond
+                "    {:<24} {:>8} {:<5}  area {:<12}  {}",
+                p.name,
+                p.size,
+                if p.size == 1 { "face" } else { "faces" },
+                Num(area),
+                cond
             );
         }
     }

@@ -21,6 +21,7 @@ use contact_force::{
 use fv_discretise::{LinearisedContact, PatchCondition};
 use fv_mesh::{CellToPoint, Surface, Vector};
 
+mod restart;
 mod state_evaluation;
 
 /// Fraction of a face's previous linearisation contact fraction kept when

@@ -37,7 +37,9 @@ pub struct FieldOutput {
 }
 
 fn mesh_data(b: &Body) -> Result<CellMeshData, OutputError> {
-    let pts: Vec<[f64; 3]> = b.mesh.points.iter().map(|p| [p.x, p.y, p.z]).collect();
+    // the initial points: a run continued from a moved mesh writes the
+    // same reference mesh and orients its cells the same way
+    let pts: Vec<[f64; 3]> = b.initial_points().iter().map(|p| [p.x, p.y, p.z]).collect();
     match &b.mesh.cell_shapes {
         Some(s) => CellMeshData::from_cells(
             pts,
@@ -51,16 +53,62 @@ fn mesh_data(b: &Body) -> Result<CellMeshData, OutputError> {
 }
 
 impl FieldOutput {
-    /// Creates `<dir>/<title>.h5` and `.xdmf` with the meshes of all bodies.
-    pub fn create(dir: &Path, title: &str, bodies: &[Body]) -> Result<Self, OutputError> {
+    /// Creates `<dir>/<title>.h5` and `.xdmf` with the meshes of all
+    /// bodies and the lines of the case its restart states fit
+    /// ([`crate::restart::case_signature`]).
+    pub fn create(
+        dir: &Path,
+        title: &str,
+        bodies: &[Body],
+        signature: &[String],
+    ) -> Result<Self, OutputError> {
+        Self::open(dir, title, bodies, signature, None)
+    }
+
+    /// Opens the results of an earlier run of the case to continue them
+    /// after increment `keep` (`fvc run --restart`;
+    /// [`ResultsWriter::reopen`]).
+    pub fn reopen(
+        dir: &Path,
+        title: &str,
+        bodies: &[Body],
+        signature: &[String],
+        keep: usize,
+    ) -> Result<Self, OutputError> {
+        Self::open(dir, title, bodies, signature, Some(keep))
+    }
+
+    fn open(
+        dir: &Path,
+        title: &str,
+        bodies: &[Body],
+        signature: &[String],
+        keep: Option<usize>,
+    ) -> Result<Self, OutputError> {
         let data: Vec<CellMeshData> = bodies.iter().map(mesh_data).collect::<Result<_, _>>()?;
         let named: Vec<(&str, &CellMeshData)> = bodies
             .iter()
             .zip(&data)
             .map(|(b, d)| (b.name.as_str(), d))
             .collect();
-        let writer = BackgroundWriter::start(ResultsWriter::create(dir, title, &named)?)?;
+        let mut w = match keep {
+            None => ResultsWriter::create(dir, title, &named)?,
+            Some(k) => ResultsWriter::reopen(dir, title, &named, k)?,
+        };
+        w.write_case_signature(signature)?;
+        let writer = BackgroundWriter::start(w)?;
         Ok(FieldOutput { writer })
+    }
+
+    /// Writes the state at the end of increment `k` that a run continued
+    /// from it starts from ([`crate::restart`]).
+    pub fn write_restart(
+        &mut self,
+        k: usize,
+        time: f64,
+        state: fv_mesh::StateArrays,
+    ) -> Result<(), OutputError> {
+        self.writer.write_restart(k, time, state)
     }
 
     /// Writes increment `k`.
@@ -237,6 +285,12 @@ impl FieldOutput {
             converged,
             bodies: owned,
         })
+    }
+
+    /// Removes the restart state of increment `k` (`[output]
+    /// restart_every`).
+    pub fn drop_restart(&mut self, k: usize) -> Result<(), OutputError> {
+        self.writer.drop_restart(k)
     }
 
     /// Appends one row to `/history`.

@@ -36,6 +36,15 @@ enum Command {
         /// `[solver] nonlinear` says (newton-krylov, segregated).
         #[arg(long, value_parser = parse_method)]
         nonlinear: Option<fv_nonlinear::NonlinearMethod>,
+        /// Continue an earlier run of this case from its results file
+        /// (RESULTS/<title>/<title>.h5), into the same results; later
+        /// increments of the file are replaced.
+        #[arg(long, value_name = "H5")]
+        restart: Option<PathBuf>,
+        /// With --restart: the increment to continue from (default: the
+        /// last one the file can continue from).
+        #[arg(long, value_name = "K", requires = "restart")]
+        from_increment: Option<usize>,
     },
     /// Validate a case and report its meshes, without solving.
     Check {
@@ -117,13 +126,15 @@ fn main() -> ExitCode {
                 Ok((bodies, contacts)) => {
                     print!("{}", solver_app::check::mesh_report(&case, &bodies));
                     println!("{}", solver_app::check::solver_report(&case));
+                    // the report is the result (standard output); notes
+                    // are diagnostics (standard error), as under `fvc run`
                     for n in bodies.iter().flat_map(|b| &b.setup_notes) {
-                        println!("note: {n}");
+                        eprintln!("note: {n}");
                     }
                     match check_support(&case, bodies, contacts) {
                         Ok(note) => {
                             if let Some(note) = note {
-                                println!("note: {note}");
+                                eprintln!("note: {note}");
                             }
                             println!("case is valid");
                             ExitCode::SUCCESS
@@ -146,6 +157,8 @@ fn main() -> ExitCode {
             threads,
             quiet,
             nonlinear,
+            restart,
+            from_increment,
         } => {
             if let Some(n) = threads {
                 if n == 0 {
@@ -182,6 +195,10 @@ fn main() -> ExitCode {
                 no_files: false,
                 no_cutbacks: false,
                 interrupt,
+                restart: restart.map(|file| solver_app::restart::RestartFrom {
+                    file,
+                    increment: from_increment,
+                }),
             };
             match run_case(&case, &opts) {
                 Ok(out) if out.converged => ExitCode::SUCCESS,

@@ -1,5 +1,7 @@
 //! Bodies of a case: mesh, geometry, material and boundary conditions, set
 //! up once and refreshed at every load increment.
+mod restart;
+
 use crate::case::{BodySpec, BoundarySpec, Case, InputError, MaterialModel, StrainKind};
 use fv_discretise::{wedge_rotations, Inertia, PatchCondition, SolidMomentum, StressLaw};
 use fv_materials::{

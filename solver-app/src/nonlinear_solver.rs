@@ -67,6 +67,21 @@ pub trait NonlinearSolver {
     fn take_notes(&mut self) -> Vec<String> {
         Vec::new()
     }
+
+    /// Restart: what the method carries from one increment to the next
+    /// (the segregated method's linear predictor; Newton–Krylov's choice
+    /// of the assembled Jacobian as preconditioner).
+    fn save_state(&self, _out: &mut fv_mesh::StateArrays) {}
+
+    /// Restart: takes back what [`Self::save_state`] put (`bodies` as
+    /// restored).
+    fn restore_state(
+        &mut self,
+        _bodies: &[Body],
+        _state: &fv_mesh::StateArrays,
+    ) -> Result<(), String> {
+        Ok(())
+    }
 }
 
 /// The solver of `settings.nonlinear` for the bodies (whose contact
@@ -130,6 +145,23 @@ impl NonlinearSolver for SegregatedSolver {
 
     fn n_unknowns(&self) -> usize {
         SegregatedSolver::n_unknowns(self)
+    }
+
+    fn save_state(&self, out: &mut fv_mesh::StateArrays) {
+        if let Some(p) = self.predictor() {
+            p.save_state("solver/predictor", out);
+        }
+    }
+
+    fn restore_state(
+        &mut self,
+        _bodies: &[Body],
+        state: &fv_mesh::StateArrays,
+    ) -> Result<(), String> {
+        match self.predictor_mut() {
+            Some(p) => p.restore_state("solver/predictor", state),
+            None => Ok(()),
+        }
     }
 
     fn times(&self) -> PhaseTimes {

@@ -166,6 +166,35 @@ impl LinearPredictor {
         self.recorded_path.clone_from(&self.path);
         self.recorded = true;
     }
+
+    /// Restart: puts the recorded change and its path under `prefix`
+    /// (nothing before the first record).
+    pub fn save_state(&self, prefix: &str, out: &mut fv_mesh::StateArrays) {
+        if !self.recorded {
+            return;
+        }
+        out.put_vectors(format!("{prefix}/change"), &self.change);
+        out.put_scalars(
+            format!("{prefix}/path_kinematic"),
+            &self.recorded_path.kinematic,
+        );
+        out.put_scalars(format!("{prefix}/path_loads"), &self.recorded_path.loads);
+    }
+
+    /// Restart: takes back the record of [`Self::save_state`], if any.
+    pub fn restore_state(&mut self, prefix: &str, s: &fv_mesh::StateArrays) -> Result<(), String> {
+        let change = format!("{prefix}/change");
+        if !s.has(&change) {
+            self.recorded = false;
+            return Ok(());
+        }
+        s.vectors_into(&change, &mut self.change)?;
+        let path = &mut self.recorded_path;
+        s.scalars_to_vec(&format!("{prefix}/path_kinematic"), &mut path.kinematic)?;
+        s.scalars_to_vec(&format!("{prefix}/path_loads"), &mut path.loads)?;
+        self.recorded = true;
+        Ok(())
+    }
 }
 
 #[cfg(test)]

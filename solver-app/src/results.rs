@@ -2,6 +2,7 @@
 //! (CASE_FORMAT.md, "Results"). Each is written so that a run killed at any
 //! moment leaves what was already written readable: history rows are
 //! flushed per increment, the summary is replaced atomically.
+use crate::words::Num;
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -23,6 +24,17 @@ impl RunLog {
         })
     }
 
+    /// Opens `<dir>/log.txt` to add to it (a continued run).
+    pub fn append(dir: &Path) -> std::io::Result<Self> {
+        let f = std::fs::OpenOptions::new()
+            .create(true)
+            .append(true)
+            .open(dir.join("log.txt"))?;
+        Ok(RunLog {
+            file: Some(BufWriter::new(f)),
+        })
+    }
+
     /// A log that only forwards to `tracing`.
     pub fn none() -> Self {
         RunLog { file: None }
@@ -31,6 +43,14 @@ impl RunLog {
     /// Writes an informational line.
     pub fn info(&mut self, msg: &str) {
         tracing::info!("{msg}");
+        self.write(msg);
+    }
+
+    /// Writes a result (the final figures, where the results are): on
+    /// standard output, where `fvc run … > file` keeps them, and to the
+    /// file; progress and diagnostics go to standard error.
+    pub fn result(&mut self, msg: &str) {
+        println!("{msg}");
         self.write(msg);
     }
 
@@ -206,6 +226,21 @@ impl History {
         Ok(History { out })
     }
 
+    /// Opens the file of an earlier run to continue it after increment
+    /// `keep` (`fvc run --restart`): the header and the first `keep` rows
+    /// stay, later rows go.
+    pub fn reopen(dir: &Path, keep: usize) -> std::io::Result<Self> {
+        let path = dir.join("history.csv");
+        let text = std::fs::read_to_string(&path)?;
+        let kept: Vec<&str> = text.lines().take(keep + 1).collect();
+        let mut out = BufWriter::new(File::create(&path)?);
+        for line in kept {
+            writeln!(out, "{line}")?;
+        }
+        out.flush()?;
+        Ok(History { out })
+    }
+
     /// Appends one row (see [`history_row`]) and flushes it.
     pub fn append(&mut self, row: &[f64]) -> std::io::Result<()> {
         for (i, v) in row.iter().enumerate() {
@@ -355,6 +390,8 @@ pub struct Summary {
     /// Explicitly coupled contacts the run coupled implicitly after an
     /// increment failed, one message per switch.
     pub coupling_switched: Vec<String>,
+    /// The increment this run continued from (`--restart`).
+    pub restarted_from: Option<usize>,
 }
 
 /// The physical figures of `summary.json` at one state: the reaction of
@@ -408,9 +445,12 @@ impl SummaryFigures {
     pub fn report(&self) -> String {
         let num = |v: &serde_json::Value| v.as_f64().unwrap_or(f64::NAN);
         let vec3 = |v: &serde_json::Value| {
-            // + 0.0: no "-0.0000e0" for a component that is zero
-            let c: Vec<String> = (0..3)
-                .map(|i| format!("{:.4e}", num(&v[i]) + 0.0))
+            // a component 1e-9 of the largest is round-off: 0
+            let c = [num(&v[0]), num(&v[1]), num(&v[2])];
+            let big = c.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            let c: Vec<String> = c
+                .iter()
+                .map(|&x| Num(if x.abs() < 1e-9 * big { 0.0 } else { x }).to_string())
                 .collect();
             format!("({})", c.join(", "))
         };
@@ -423,14 +463,14 @@ impl SummaryFigures {
         }
         for c in &self.contacts {
             lines.push(format!(
-                "  contact {} – {}: normal force {:.4e}, tangential force {}, peak pressure {:.4e}, contact area {:.4e}, largest penetration {:.3e}",
+                "  contact {} – {}: normal force {}, tangential force {}, peak pressure {}, contact area {}, largest penetration {}",
                 c["master"].as_str().unwrap_or("?"),
                 c["slave"].as_str().unwrap_or("?"),
-                num(&c["normal_force"]),
+                Num(num(&c["normal_force"])),
                 vec3(&c["tangential_force"]),
-                num(&c["max_pressure"]),
-                num(&c["contact_area"]),
-                num(&c["max_penetration"]),
+                Num(num(&c["max_pressure"])),
+                Num(num(&c["contact_area"])),
+                Num(num(&c["max_penetration"])),
             ));
         }
         if lines.is_empty() {
@@ -472,6 +512,9 @@ pub fn write_summary(
     }
     if !s.coupling_switched.is_empty() {
         v["coupling_switched"] = serde_json::json!(s.coupling_switched);
+    }
+    if let Some(k) = s.restarted_from {
+        v["restarted_from"] = serde_json::json!(k);
     }
     if let Some(sig) = &s.interrupted {
         v["interrupted_by"] = serde_json::Value::String(sig.clone());

@@ -12,10 +12,13 @@ use crate::mesh_loading::load_mesh;
 use crate::model::{build_bodies, Body};
 use crate::nonlinear_solver::{self, NonlinearSolver};
 use crate::predictor::PathChange;
+use crate::progress::Progress;
+use crate::restart::{RestartFrom, Resumed};
 use crate::results::{
     history_columns, history_row, write_summary, History, RunLog, Summary, SummaryFigures,
 };
 use crate::segregated::{IncrementInfo, SegregatedSolver, SolveError};
+use crate::words::{count, duration, Num};
 use fv_nonlinear::NonlinearMethod;
 
 /// Largest number of times a failed increment is halved and redone.
@@ -54,6 +57,8 @@ pub struct RunOptions {
     /// Asks the run to stop (SIGINT, SIGTERM; [`Interrupt::install`]):
     /// it ends after the write under way with the results so far.
     pub interrupt: Interrupt,
+    /// `--restart`: continue an earlier run of the case from its results.
+    pub restart: Option<RestartFrom>,
 }
 
 /// Result of a run.
@@ -181,6 +186,22 @@ fn run_case_noting(
         NonlinearMethod::NewtonKrylov => SegregatedSolver::check_held(&bodies, &case.solver),
     };
     let mut solver = nonlinear_solver::build(&bodies, &case.solver);
+    // `--restart`: the state of the increment continued from, before the
+    // method sets up on the meshes
+    let resumed = match &opts.restart {
+        Some(from) => {
+            let state = crate::restart::load(from, &bodies, &contacts)?;
+            let file = &from.file;
+            Some(crate::restart::apply(
+                &state,
+                file,
+                &mut bodies,
+                &mut contacts,
+                solver.as_mut(),
+            )?)
+        }
+        None => None,
+    };
     if let Err(e) = held.and_then(|_| solver.prepare(&bodies)) {
         let may_switch = note.is_none() && method == NonlinearMethod::Segregated;
         match unheld_body(case, &e, may_switch) {
@@ -195,51 +216,83 @@ fn run_case_noting(
     let dir = if opts.no_files {
         None
     } else {
-        let base = opts
-            .output
-            .clone()
-            .unwrap_or_else(|| case.output.directory.clone());
-        let dir = base.join(&case.title);
+        let dir = match &opts.restart {
+            Some(from) => crate::restart::results_folder(case, from, opts.output.as_deref())?,
+            None => opts
+                .output
+                .clone()
+                .unwrap_or_else(|| case.output.directory.clone())
+                .join(&case.title),
+        };
         std::fs::create_dir_all(&dir).map_err(|e| unwritable(case, opts, &dir, &e))?;
         Some(dir)
     };
+    let signature = crate::restart::case_signature(&bodies, &contacts);
     let io_err = |e: std::io::Error| RunError::Output(e.to_string());
     let out_err = |e: crate::output::OutputError| RunError::Output(e.to_string());
     // the result files are created before the first increment: a folder
     // that cannot take them is the input's (exit 2), not the solver's
-    let (mut log, mut history, mut fields) = match &dir {
-        Some(d) => (
+    let (mut log, mut history, mut fields) = match (&dir, &resumed) {
+        (Some(d), None) => (
             RunLog::create(d).map_err(|e| unwritable(case, opts, d, &e))?,
             Some(
                 History::create(d, &bodies, &contacts)
                     .map_err(|e| unwritable(case, opts, d, &e))?,
             ),
             Some(
-                FieldOutput::create(d, &case.title, &bodies)
+                FieldOutput::create(d, &case.title, &bodies, &signature)
                     .map_err(|e| unwritable(case, opts, d, &e))?,
             ),
         ),
-        None => (RunLog::none(), None, None),
+        // a continued run: the results so far, cut after its increment
+        (Some(d), Some(r)) => (
+            RunLog::append(d).map_err(|e| unwritable(case, opts, d, &e))?,
+            Some(History::reopen(d, r.k).map_err(|e| unwritable(case, opts, d, &e))?),
+            Some(
+                FieldOutput::reopen(d, &case.title, &bodies, &signature, r.k)
+                    .map_err(|e| unwritable(case, opts, d, &e))?,
+            ),
+        ),
+        (None, _) => (RunLog::none(), None, None),
     };
     let columns = history_columns(&bodies, &contacts);
     let columns: Vec<&str> = columns.iter().map(|s| s.as_str()).collect();
     let cells: usize = bodies.iter().map(|b| b.mesh.n_cells).sum();
+    let resumed = resumed.unwrap_or(Resumed {
+        converged: true,
+        dt_prev: case.time.dt(),
+        ..Default::default()
+    });
     let mut summary = Summary {
         title: case.title.clone(),
-        converged: true,
+        converged: resumed.converged,
         cells,
         nonlinear: method.name(),
+        increments: resumed.k,
+        time_reached: resumed.time,
+        outer_iterations: resumed.outer_iterations,
+        linear_iterations: resumed.linear_iterations,
+        residual_evaluations: resumed.residual_evaluations,
+        restarted_from: opts.restart.as_ref().map(|_| resumed.k),
         ..Default::default()
     };
     log.info(&format!(
-        "case '{}' ({}): {} bodies, {} cells, {} increments",
+        "case '{}' ({}): {}, {}, {}",
         case.title,
         case.source.path.display(),
-        bodies.len(),
-        cells,
-        case.time.steps
+        count(bodies.len(), "body", "bodies"),
+        count(cells, "cell", "cells"),
+        count(case.time.steps, "increment", "increments")
     ));
     log.info(&crate::check::solver_report(case));
+    if let Some(from) = &opts.restart {
+        log.info(&format!(
+            "continued from increment {} (t = {}) of {}; later increments of the results are replaced",
+            resumed.k,
+            Num(resumed.time),
+            from.file.display()
+        ));
+    }
     if let Some(note) = note {
         log.warn(note);
         summary.coupling_switched.push(note.to_owned());
@@ -252,32 +305,23 @@ fn run_case_noting(
     }
 
     let tty = std::io::stderr().is_terminal() && !opts.quiet && !opts.no_files;
-    let bar = if tty {
-        let pb = indicatif::ProgressBar::new(case.time.steps as u64);
-        pb.set_style(
-            indicatif::ProgressStyle::with_template(
-                "{spinner} [{elapsed_precise}] {bar:30} increment {pos}/{len} {msg}",
-            )
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-        );
-        Some(pb)
-    } else {
-        None
-    };
+    let mut progress = Progress::new(tty, resumed.k, case.time.steps);
 
     let reassemble_every_increment = bodies
         .iter()
         .any(|b| !b.rigid && b.momentum.law.is_updated_lagrangian());
     let linear = is_linear(&bodies, &contacts);
-    let mut t_prev = 0.0;
-    let mut dt_prev = case.time.dt();
+    let mut t_prev = resumed.time;
+    let mut dt_prev = resumed.dt_prev;
     // the change of the prescribed values over a step (predictor), and the
     // values at the end of the step (buffers kept across steps)
     let mut path = PathChange::default();
     let mut path_end = PathChange::default();
     let solve_start = Instant::now();
     let mut cell_iterations = 0.0;
-    let mut switched_coupling = false;
+    let mut switched_coupling = resumed.switched_coupling;
+    // the increment of the last restart state written
+    let mut last_state = opts.restart.as_ref().map(|_| resumed.k);
     let may_switch = case.solver.coupling_fallback == crate::case::CouplingFallback::Implicit
         && method == NonlinearMethod::Segregated;
     let mut evaluations = 0usize;
@@ -288,7 +332,7 @@ fn run_case_noting(
         Some(_) => SummaryFigures::of(&bodies, &contacts),
         None => SummaryFigures::default(),
     };
-    for k in 1..=case.time.steps {
+    for k in resumed.k + 1..=case.time.steps {
         if failure.is_some() || interrupted.is_some() {
             break;
         }
@@ -297,6 +341,7 @@ fn run_case_noting(
             break;
         }
         let t = case.time.time_at(k);
+        let increment_clock = Instant::now();
         // the increment, in sub-steps when an attempt fails (cut-back)
         // converged while every sub-step is
         let mut total = IncrementInfo {
@@ -358,11 +403,7 @@ fn run_case_noting(
                 if trace_outer {
                     eprintln!("  outer {outer}: residual {res:.3e}");
                 }
-                if let Some(pb) = &bar {
-                    if outer % 10 == 0 {
-                        pb.set_message(format!("outer {outer} residual {res:.2e}"));
-                    }
-                }
+                progress.iteration(outer, res);
                 match opts.interrupt.requested() {
                     Some(_) => ControlFlow::Break(()),
                     None => ControlFlow::Continue(()),
@@ -398,14 +439,14 @@ fn run_case_noting(
                         total.residual_evaluations += info.residual_evaluations;
                         if info.coupling_stalled {
                             format!(
-                                "{} after {} outer iterations",
+                                "{} after {}",
                                 info.shortfall(case.solver.tolerance),
-                                info.outer_iterations
+                                count(info.outer_iterations, "outer iteration", "outer iterations")
                             )
                         } else {
                             format!(
-                                "no convergence in {} outer iterations",
-                                info.outer_iterations
+                                "no convergence in {}",
+                                count(info.outer_iterations, "outer iteration", "outer iterations")
                             )
                         }
                     }
@@ -418,7 +459,9 @@ fn run_case_noting(
                 contacts.couple_implicitly(&switch, &mut bodies);
                 switched_coupling = true;
                 let note = format!(
-                    "increment {k}: step t = {t0:.6e} → {t1:.6e} failed with explicit coupling ({why}); [[contact]] {} coupled implicitly from here on (thesis §4.5), the step redone",
+                    "increment {k}: step t = {} → {} failed with explicit coupling ({why}); [[contact]] {} coupled implicitly from here on (thesis §4.5), the step redone",
+                    Num(t0),
+                    Num(t1),
                     contact_names(case, &switch)
                 );
                 log.warn(&note);
@@ -433,14 +476,16 @@ fn run_case_noting(
                 !has_inertia && path.kinematic.iter().chain(&path.loads).all(|x| *x == 0.0);
             if let (true, Ok(info)) = (failed && constant_path && !opts.no_cutbacks, &attempt) {
                 log.warn(&format!(
-                    "increment {k}: no convergence in {} outer iterations ({}); not redone in smaller steps: no prescribed value changes over the step t = {t0:.6e} → {t1:.6e} (a constant value is applied in full from the first increment; give a load or a displacement as a table to ramp it), so a smaller step is the same problem",
-                    info.outer_iterations,
-                    info.shortfall(case.solver.tolerance)
+                    "increment {k}: no convergence in {} ({}); not redone in smaller steps: no prescribed value changes over the step t = {} → {} (a constant value is applied in full from the first increment; give a load or a displacement as a table to ramp it), so a smaller step is the same problem",
+                    count(info.outer_iterations, "outer iteration", "outer iterations"),
+                    info.shortfall(case.solver.tolerance),
+                    Num(t0),
+                    Num(t1)
                 ));
             } else if let (true, Ok(info)) = (failed && linear && !opts.no_cutbacks, &attempt) {
                 log.warn(&format!(
-                    "increment {k}: no convergence in {} outer iterations ({}); not redone in smaller steps: the problem is linear (small strain, Hooke's law, no contact, no force control, no inertia), and its outer iteration converges no faster for a smaller load step; raise [solver] max_outer, or loosen tolerance",
-                    info.outer_iterations,
+                    "increment {k}: no convergence in {} ({}); not redone in smaller steps: the problem is linear (small strain, Hooke's law, no contact, no force control, no inertia), and its outer iteration converges no faster for a smaller load step; raise [solver] max_outer, or loosen tolerance",
+                    count(info.outer_iterations, "outer iteration", "outer iterations"),
                     info.shortfall(case.solver.tolerance)
                 ));
             } else if let (true, Err(e @ SolveError::Linear(_))) =
@@ -453,8 +498,8 @@ fn run_case_noting(
             } else if failed && !opts.no_cutbacks && cuts < MAX_CUTBACKS {
                 let why = match &attempt {
                     Ok(info) => format!(
-                        "no convergence in {} outer iterations",
-                        info.outer_iterations
+                        "no convergence in {}",
+                        count(info.outer_iterations, "outer iteration", "outer iterations")
                     ),
                     Err(e) => e.to_string(),
                 };
@@ -473,7 +518,10 @@ fn run_case_noting(
                 cuts += 1;
                 h *= 0.5;
                 log.warn(&format!(
-                    "increment {k}: step t = {t0:.6e} → {t1:.6e} failed ({why}); redone in steps of {h:.3e}"
+                    "increment {k}: step t = {} → {} failed ({why}); redone in steps of {}",
+                    Num(t0),
+                    Num(t1),
+                    Num(h)
                 ));
                 continue;
             }
@@ -511,8 +559,10 @@ fn run_case_noting(
                         // `continue`: keep the unconverged sub-step and go on
                         // to the end of the increment
                         log.warn(&format!(
-                            "increment {k}: sub-step t = {t0:.6e} → {t1:.6e} did not converge in {} outer iterations ({}); continuing",
-                            info.outer_iterations,
+                            "increment {k}: sub-step t = {} → {} did not converge in {} ({}); continuing",
+                            Num(t0),
+                            Num(t1),
+                            count(info.outer_iterations, "outer iteration", "outer iterations"),
                             info.shortfall(case.solver.tolerance)
                         ));
                     }
@@ -550,16 +600,27 @@ fn run_case_noting(
                 cell_iterations += (info.outer_iterations * solver.n_unknowns()) as f64;
                 evaluations += info.residual_evaluations;
                 summary.residual_evaluations += info.residual_evaluations;
+                let seconds = increment_clock.elapsed().as_secs_f64();
                 let line = format!(
-                    "increment {k}/{} t = {t:.6e}: {} outer iterations, residual {:.3e}, {} linear iterations{}",
+                    "increment {k}/{} t = {}: {}, residual {:.3e}, {}, {}{}",
                     case.time.steps,
-                    info.outer_iterations,
+                    Num(t),
+                    count(info.outer_iterations, "outer iteration", "outer iterations"),
                     info.residual,
-                    info.linear_iterations,
-                    if info.converged { "" } else { " (NOT converged)" }
+                    count(
+                        info.linear_iterations,
+                        "linear iteration",
+                        "linear iterations"
+                    ),
+                    duration(seconds),
+                    if info.converged {
+                        ""
+                    } else {
+                        " (NOT converged)"
+                    }
                 );
-                if let Some(pb) = &bar {
-                    pb.inc(1);
+                if progress.is_shown() {
+                    progress.increment_done(k, seconds);
                     log.write(&line);
                 } else if opts.quiet || !opts.no_files {
                     log.info(&line);
@@ -568,6 +629,8 @@ fn run_case_noting(
                 for l in crate::results::full_revolution_lines(&bodies, &contacts) {
                     log.write(&l);
                 }
+                let with_fields =
+                    k % case.output.every == 0 || k == case.time.steps || !info.converged;
                 record_increment(
                     &mut history,
                     &mut fields,
@@ -578,9 +641,7 @@ fn run_case_noting(
                         outer_iterations: info.outer_iterations,
                         residual: info.residual,
                         converged: info.converged,
-                        with_fields: k % case.output.every == 0
-                            || k == case.time.steps
-                            || !info.converged,
+                        with_fields,
                     },
                     &bodies,
                     &contacts,
@@ -638,8 +699,8 @@ fn run_case_noting(
                         String::new()
                     };
                     let msg = format!(
-                        "increment {k} did not converge in {} outer iterations{attempts} ({})",
-                        info.outer_iterations,
+                        "increment {k} did not converge in {}{attempts} ({})",
+                        count(info.outer_iterations, "outer iteration", "outer iterations"),
                         info.shortfall(case.solver.tolerance)
                     );
                     match case.solver.on_nonconvergence {
@@ -649,6 +710,29 @@ fn run_case_noting(
                         OnNonConvergence::Continue => {
                             log.warn(&msg);
                             summary.converged = false;
+                        }
+                    }
+                }
+                // the state the next increment starts from, with the fields
+                if let (true, true, None, Some(w)) = (with_fields, accepted, &failure, &mut fields)
+                {
+                    let run = Resumed {
+                        k,
+                        time: t,
+                        outer_iterations: summary.outer_iterations,
+                        linear_iterations: summary.linear_iterations,
+                        residual_evaluations: summary.residual_evaluations,
+                        wall_seconds: resumed.wall_seconds + start.elapsed().as_secs_f64(),
+                        converged: summary.converged,
+                        switched_coupling,
+                        dt_prev,
+                    };
+                    let state = crate::restart::capture(&run, &bodies, &contacts, solver.as_ref());
+                    w.write_restart(k, t, state).map_err(out_err)?;
+                    // the last state stays, and every `restart_every`-th
+                    if let Some(prev) = last_state.replace(k) {
+                        if prev % case.output.restart_every != 0 {
+                            w.drop_restart(prev).map_err(out_err)?;
                         }
                     }
                 }
@@ -680,7 +764,8 @@ fn run_case_noting(
                     summary.linear_iterations += total.linear_iterations;
                     summary.time_reached = t0;
                     msg.push_str(&format!(
-                        "; its last converged sub-step, t = {t0:.6e}, is written as increment {k}"
+                        "; its last converged sub-step, t = {}, is written as increment {k}",
+                        Num(t0)
                     ));
                 }
                 match e {
@@ -690,11 +775,9 @@ fn run_case_noting(
             }
         }
     }
-    if let Some(pb) = &bar {
-        pb.finish_and_clear();
-    }
+    progress.finish();
     let solve_seconds = solve_start.elapsed().as_secs_f64();
-    summary.wall_seconds = start.elapsed().as_secs_f64();
+    summary.wall_seconds = resumed.wall_seconds + start.elapsed().as_secs_f64();
     if let Some(f) = &failure {
         summary.converged = false;
         summary.failure = Some(f.clone());
@@ -708,10 +791,10 @@ fn run_case_noting(
     }
     if cell_iterations > 0.0 {
         log.info(&format!(
-            "cost: {:.3} µs per cell per outer iteration; {:.1} outer iterations per increment; {} linear iterations in all",
+            "cost: {:.3} µs per cell per outer iteration; {:.1} outer iterations per increment; {} in all",
             solve_seconds * 1e6 / cell_iterations,
             summary.outer_iterations as f64 / summary.increments.max(1) as f64,
-            summary.linear_iterations
+            count(summary.linear_iterations, "linear iteration", "linear iterations")
         ));
         if method == NonlinearMethod::NewtonKrylov && evaluations > 0 {
             log.info(&format!(
@@ -737,18 +820,18 @@ fn run_case_noting(
         write_summary(d, &summary, &figures).map_err(io_err)?;
         let physics = figures.report();
         if !physics.is_empty() {
-            log.info(&physics);
+            log.result(&physics);
         }
         match interrupted {
             Some(sig) => log.warn(&format!(
-                "interrupted by {} after increment {}/{} (t = {:.6e}): results so far in {}",
+                "interrupted by {} after increment {}/{} (t = {}): results so far in {}",
                 signal_name(sig),
                 summary.increments,
                 case.time.steps,
-                summary.time_reached,
+                Num(summary.time_reached),
                 d.display()
             )),
-            None => log.info(&format!("results in {}", d.display())),
+            None => log.result(&format!("results in {}", d.display())),
         }
     } else if let Some(sig) = interrupted {
         log.warn(&format!(
@@ -824,12 +907,15 @@ fn short_tables(case: &Case) -> Vec<String> {
     let range = |key: String, first: f64, last: f64, out: &mut Vec<String>| {
         if last < end * (1.0 - 1e-9) {
             out.push(format!(
-                "{key}: the table ends at t = {last:.6e}, before [time] end = {end:.6e}; its last value is held from there"
+                "{key}: the table ends at t = {}, before [time] end = {}; its last value is held from there",
+                Num(last),
+                Num(end)
             ));
         }
         if first > 1e-12 * end.abs() {
             out.push(format!(
-                "{key}: the table starts at t = {first:.6e}; its first value is held before"
+                "{key}: the table starts at t = {}; its first value is held before",
+                Num(first)
             ));
         }
     };

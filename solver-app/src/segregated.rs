@@ -806,6 +806,16 @@ impl SegregatedSolver {
         self.write_diagonals_and_factorise()
     }
 
+    /// The linear predictor, if the case asks for one (restart).
+    pub fn predictor(&self) -> Option<&LinearPredictor> {
+        self.predictor.as_ref()
+    }
+
+    /// The linear predictor, if any, to restore (restart).
+    pub fn predictor_mut(&mut self) -> Option<&mut LinearPredictor> {
+        self.predictor.as_mut()
+    }
+
     /// Records the displacement at the start of an increment (the reference
     /// of the relative residual) and tells every body which directions are
     /// not solved (`SolidMomentum::unsolved`).

@@ -140,7 +140,7 @@ pub const CONTACT_RELAXATION: &[&str] = &["normal", "tangential"];
 pub const AUGMENTATION: &[&str] = &["penetration", "max_updates"];
 
 /// `[output]`.
-pub const OUTPUT: &[&str] = &["directory", "every"];
+pub const OUTPUT: &[&str] = &["directory", "every", "restart_every"];
 
 /// The keys one table of the case file accepts.
 #[derive(Debug, Clone, Copy)]

@@ -322,13 +322,23 @@ pub struct OutputSettings {
     pub directory: PathBuf,
     /// Write fields every k increments (>= 1, default 1).
     pub every: usize,
+    /// Keep the restart state of the increments that are multiples of
+    /// this (of those whose fields are written), and of the last one
+    /// written (>= 1, default [`RESTART_EVERY`]).
+    pub restart_every: usize,
 }
+
+/// Default `[output] restart_every`: a state is about the size of the
+/// fields of an increment, so keeping every tenth (and the last) adds
+/// about a tenth to the results.
+pub const RESTART_EVERY: usize = 10;
 
 impl Default for OutputSettings {
     fn default() -> Self {
         Self {
             directory: PathBuf::from("results"),
             every: 1,
+            restart_every: RESTART_EVERY,
         }
     }
 }
@@ -670,5 +680,6 @@ pub(crate) fn output(t: &Table<'_>) -> Res<OutputSettings> {
             n.nonempty_str().map(PathBuf::from)
         })?,
         every: t.opt("every", d.every, |n| n.usize_min(1))?,
+        restart_every: t.opt("restart_every", d.restart_every, |n| n.usize_min(1))?,
     })
 }

@@ -93,6 +93,7 @@ fn defaults() {
     assert_eq!(plain.solver.linear.tolerance, 0.1);
     assert_eq!(c.output.directory, PathBuf::from("results"));
     assert_eq!(c.output.every, 1);
+    assert_eq!(c.output.restart_every, 10);
     assert!(c.contacts.is_empty());
     assert_eq!(c.bodies.len(), 1);
     let b = &c.bodies[0];
@@ -159,6 +160,7 @@ material = { model = "linear-elastic", E = 1, nu = 0, rho = 7800 }
 [output]
 directory = "out/dir"
 every = 5
+restart_every = 20
 "#;
     let c = parse(text);
     assert_eq!(c.analysis.kind, AnalysisKind::Dynamic);
@@ -193,6 +195,7 @@ every = 5
     assert_eq!(c.bodies[0].material.rho, Some(7800.0));
     assert_eq!(c.output.directory, PathBuf::from("out/dir"));
     assert_eq!(c.output.every, 5);
+    assert_eq!(c.output.restart_every, 20);
     assert_eq!(c.source.line_of("solver.linear.method"), Some(21));
     let e = fail(&text.replace("\"accumulated\"", "\"total\""));
     assert_eq!(e.key.as_deref(), Some("solver.rhie_chow_history"));

@@ -307,6 +307,24 @@ impl crate::nonlinear_solver::NonlinearSolver for NewtonKrylovSolver {
 
     fn set_divergence_retries(&mut self, _retries: u32) {}
 
+    /// `"auto"` keeps the assembled Jacobian as preconditioner once it
+    /// switched to it.
+    fn save_state(&self, out: &mut fv_mesh::StateArrays) {
+        out.put_scalar(
+            "solver/assembled_jacobian".into(),
+            f64::from(u8::from(self.jacobian.is_some())),
+        );
+    }
+
+    fn restore_state(&mut self, bodies: &[Body], s: &fv_mesh::StateArrays) -> Result<(), String> {
+        let name = "solver/assembled_jacobian";
+        // a state written by the segregated method: nothing to restore
+        if s.has(name) && s.scalar(name)? != 0.0 && self.jacobian.is_none() {
+            self.jacobian = Some(AssembledJacobian::new(bodies, &self.layout));
+        }
+        Ok(())
+    }
+
     /// The last attempt neither stops on slow progress nor, unless the
     /// case gives `max_outer`, after [`crate::case::NEWTON_MAX_ITERATIONS`].
     fn set_final_attempt(&mut self, last: bool) {

@@ -21,6 +21,8 @@ use hdf5::{Dataset, File, Group, H5Type, Location};
 use super::face_cells::face_cells;
 use super::xdmf;
 use super::xdmf_document::{self, BodyGrid, IncrementRecord, PatchGrid};
+
+mod restart;
 use super::{von_mises, BodyIncrement, CellMeshData, OutputError, PatchIncrement};
 
 /// Names a patch may not take: they are datasets or groups of
@@ -233,6 +235,47 @@ fn check_len(what: &str, got: usize, expected: usize) -> Result<(), OutputError>
     Ok(())
 }
 
+/// The writer's state of every body and its XDMF topology; checks the
+/// names (unique, usable in HDF5) and the meshes.
+fn body_states(
+    bodies: &[(&str, &CellMeshData)],
+) -> Result<(Vec<BodyState>, Vec<xdmf::VisTopology>), OutputError> {
+    if bodies.is_empty() {
+        return Err(OutputError::invalid("no bodies to write"));
+    }
+    let mut states = Vec::with_capacity(bodies.len());
+    let mut topologies = Vec::with_capacity(bodies.len());
+    for (i, (name, mesh)) in bodies.iter().enumerate() {
+        check_name("body name", name)?;
+        if bodies[..i].iter().any(|(n, _)| n == name) {
+            return Err(OutputError::invalid(format!(
+                "body name '{name}' is used twice"
+            )));
+        }
+        mesh.validate()
+            .map_err(|e| OutputError::invalid(format!("body '{name}': {e}")))?;
+        let vis = xdmf::body_topology(mesh)
+            .map_err(|e| OutputError::invalid(format!("body '{name}': {e}")))?;
+        states.push(BodyState {
+            grid: BodyGrid {
+                name: name.to_string(),
+                block: i,
+                n_points: mesh.n_points(),
+                vis_cells: vis.n_cells,
+                topo_len: vis.topology.len(),
+                decomposed: vis.cell_map.is_some(),
+                patches: Vec::new(),
+            },
+            n_cells: mesh.n_cells(),
+            cell_map: vis.cell_map.clone(),
+            mesh: (*mesh).clone(),
+            face_cells: Vec::new(),
+        });
+        topologies.push(vis);
+    }
+    Ok((states, topologies))
+}
+
 impl ResultsWriter {
     /// Creates (truncating) `<dir>/<title>.h5` with the reference meshes
     /// under `/mesh/<body>/`, and a `<dir>/<title>.xdmf` showing them; the
@@ -244,39 +287,7 @@ impl ResultsWriter {
         bodies: &[(&str, &CellMeshData)],
     ) -> Result<Self, OutputError> {
         check_name("title", title)?;
-        if bodies.is_empty() {
-            return Err(OutputError::invalid("no bodies to write"));
-        }
-        let mut states = Vec::with_capacity(bodies.len());
-        let mut topologies = Vec::with_capacity(bodies.len());
-        for (i, (name, mesh)) in bodies.iter().enumerate() {
-            check_name("body name", name)?;
-            if bodies[..i].iter().any(|(n, _)| n == name) {
-                return Err(OutputError::invalid(format!(
-                    "body name '{name}' is used twice"
-                )));
-            }
-            mesh.validate()
-                .map_err(|e| OutputError::invalid(format!("body '{name}': {e}")))?;
-            let vis = xdmf::body_topology(mesh)
-                .map_err(|e| OutputError::invalid(format!("body '{name}': {e}")))?;
-            states.push(BodyState {
-                grid: BodyGrid {
-                    name: name.to_string(),
-                    block: i,
-                    n_points: mesh.n_points(),
-                    vis_cells: vis.n_cells,
-                    topo_len: vis.topology.len(),
-                    decomposed: vis.cell_map.is_some(),
-                    patches: Vec::new(),
-                },
-                n_cells: mesh.n_cells(),
-                cell_map: vis.cell_map.clone(),
-                mesh: (*mesh).clone(),
-                face_cells: Vec::new(),
-            });
-            topologies.push(vis);
-        }
+        let (states, topologies) = body_states(bodies)?;
         std::fs::create_dir_all(dir).map_err(|source| OutputError::Io {
             path: dir.to_path_buf(),
             source,

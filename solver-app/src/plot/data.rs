@@ -287,7 +287,9 @@ impl History {
 
 /// Linear iterations per increment from the lines of `log.txt` that
 /// `fvc run` writes after every increment (`increment k/n t = …: … outer
-/// iterations, residual …, L linear iterations`): increment k → L.
+/// iterations, residual …, L linear iterations, 0.42 s`): increment k → L;
+/// a run continued from its results (`--restart`) repeats the increments
+/// after its start, and the later lines count.
 pub fn linear_iterations_from_log(text: &str) -> BTreeMap<usize, usize> {
     let mut out = BTreeMap::new();
     for line in text.lines() {
@@ -300,11 +302,12 @@ pub fn linear_iterations_from_log(text: &str) -> BTreeMap<usize, usize> {
         let Ok(k) = k.parse::<usize>() else {
             continue;
         };
-        let Some(head) = rest.split(" linear iterations").next() else {
+        // "1 linear iteration", "45 linear iterations"
+        let Some(head) = rest.split(" linear iteration").next() else {
             continue;
         };
         if head.len() == rest.len() {
-            continue; // no "linear iterations" on this line
+            continue; // no "linear iteration(s)" on this line
         }
         if let Some(l) = head
             .rsplit([' ', ','])
@@ -446,10 +449,13 @@ mod tests {
         let log = "case hertz\n\
             increment 1/2 t = 5.000000e-1: 6 outer iterations, residual 7.252e-8, 45 linear iterations\n\
             increment 1: something else\n\
-            increment 2/2 t = 1.000000e0: 3 outer iterations, residual 1.0e-8, 12 linear iterations (NOT converged)\n\
+            increment 2/3 t = 1: 3 outer iterations, residual 1.0e-8, 12 linear iterations, 0.42 s (NOT converged)\n\
+            increment 3/3 t = 1.5: 1 outer iteration, residual 1.0e-8, 1 linear iteration, 0.01 s\n\
+            continued from increment 1 (t = 0.5)\n\
+            increment 2/3 t = 1: 2 outer iterations, residual 1.0e-8, 9 linear iterations, 0.30 s\n\
             cost: 4.954 µs per cell per outer iteration; 6.0 outer iterations per increment; 45 linear iterations in all\n";
         let m = linear_iterations_from_log(log);
-        assert_eq!(m.into_iter().collect::<Vec<_>>(), [(1, 45), (2, 12)]);
+        assert_eq!(m.into_iter().collect::<Vec<_>>(), [(1, 45), (2, 9), (3, 1)]);
     }
 
     #[test]

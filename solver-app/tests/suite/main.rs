@@ -11,3 +11,4 @@ mod interrupt;
 mod newton_residual;
 mod paraview;
 mod plot;
+mod restart;

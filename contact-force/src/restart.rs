@@ -169,10 +169,12 @@ impl GgiWeights {
         s.scalars_to_vec(&format!("{prefix}/slave_overlap"), &mut self.slave_overlap)?;
         s.scalars_to_vec(&format!("{prefix}/master_area"), &mut self.master_area)?;
         s.scalars_to_vec(&format!("{prefix}/slave_area"), &mut self.slave_area)?;
+        // no weights at all (no search yet) is consistent too
         let rows = |offsets: &[u32], n: usize, len: usize| {
-            offsets.len() == n + 1
-                && offsets.windows(2).all(|w| w[0] <= w[1])
-                && offsets.last().map_or(len == 0, |&l| l as usize == len)
+            (offsets.is_empty() && n == 0 && len == 0)
+                || offsets.len() == n + 1
+                    && offsets.windows(2).all(|w| w[0] <= w[1])
+                    && offsets.last().map_or(len == 0, |&l| l as usize == len)
         };
         if !rows(
             &self.master_offsets,

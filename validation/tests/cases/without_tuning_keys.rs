@@ -128,3 +128,53 @@ fn curved_beams_frictional_without_tuning_keys() {
     assert!((fx / nx - 1.0).abs() < 0.03, "Fx {fx} vs {nx}");
     assert!((fy / ny - 1.0).abs() < 0.03, "Fy {fy} vs {ny}");
 }
+
+/// The stripped text with the augmented Lagrangian and `penalty_scale`
+/// on every contact.
+fn augmented_at(text: String, scale: f64) -> String {
+    stripped(text).replace(
+        "[[contact]]\n",
+        &format!("[[contact]]\naugmentation = true\npenalty_scale = {scale}\n"),
+    )
+}
+
+/// Issue 46's penalty independence: with the augmented Lagrangian, the
+/// benchmark figures at penalty scale 1 and 100 agree within 1 % (hertz
+/// fine: the peak pressure and the force; sphere-block: the force).
+/// Measured: hertz force 0.035 %, peak 0.104 %; sphere-block force
+/// 0.122 %.
+#[test]
+fn augmented_results_do_not_depend_on_the_penalty() {
+    let close = |what: &str, a: f64, b: f64| {
+        let d = (a / b - 1.0).abs();
+        eprintln!(
+            "{what}: penalty 1 {a:.5}, penalty 100 {b:.5}, {:.3} %",
+            100.0 * d
+        );
+        assert!(d < 0.01, "{what}: {a} vs {b}");
+    };
+    let [h1, h100] = [1.0, 100.0]
+        .map(|s| hertz_cylinder::run_edited("fine", false, move |t| augmented_at(t, s)));
+    assert!(h1.converged && h100.converged);
+    close("hertz fine force", h1.force, h100.force);
+    close(
+        "hertz fine peak / Hertz",
+        1.0 + h1.peak_error,
+        1.0 + h100.peak_error,
+    );
+    let [s1, s100] = [1.0, 100.0]
+        .map(|s| sphere_block::run_edited(Variant::Deformable, false, move |t| augmented_at(t, s)));
+    assert!(s1.converged && s100.converged);
+    close("sphere-block force", s1.force, s100.force);
+    // not its peak pressure: +7.4 % of Hertz at penalty 1 and +122 % at
+    // 100 with the multipliers (+0.47 % at 1 without them), a spike the
+    // Uzawa updates leave on faces at the edge of contact (issue 46 open)
+    eprintln!(
+        "sphere-block peak / Hertz, augmented: penalty 1 {:+.2} %, penalty 100 {:+.2} %",
+        100.0 * s1.peak_error,
+        100.0 * s100.peak_error
+    );
+    // die drawing is not here: augmented at penalty scale 100 its
+    // Newton–Krylov run stops at 0.169 m (increment 68, residual 8e-2
+    // after 500 iterations at 1/64 of the step; issue 46 open)
+}

@@ -414,10 +414,7 @@ fn run_case_noting(
             }
             if let Err(SolveError::Interrupted) = attempt {
                 // back to the last converged state, which the results hold
-                for b in bodies.iter_mut() {
-                    b.restore_start();
-                }
-                contacts.restore_start();
+                restore_start(&mut bodies, &mut contacts);
                 break Err(SolveError::Interrupted);
             }
             let failed = match &attempt {
@@ -452,10 +449,7 @@ fn run_case_noting(
                     }
                     Err(e) => e.to_string(),
                 };
-                for b in bodies.iter_mut() {
-                    b.restore_start();
-                }
-                contacts.restore_start();
+                restore_start(&mut bodies, &mut contacts);
                 contacts.couple_implicitly(&switch, &mut bodies);
                 switched_coupling = true;
                 let note = format!(
@@ -511,10 +505,7 @@ fn run_case_noting(
                     }
                     Err(_) => diverged += 1,
                 }
-                for b in bodies.iter_mut() {
-                    b.restore_start();
-                }
-                contacts.restore_start();
+                restore_start(&mut bodies, &mut contacts);
                 cuts += 1;
                 h *= 0.5;
                 log.warn(&format!(
@@ -540,10 +531,7 @@ fn run_case_noting(
                         // under `abort`, after converged sub-steps: back to
                         // the last of them, which the results report (as
                         // after an error), not the unconverged iterate
-                        for b in bodies.iter_mut() {
-                            b.restore_start();
-                        }
-                        contacts.restore_start();
+                        restore_start(&mut bodies, &mut contacts);
                         break Err(SolveError::Nonlinear(format!(
                             "sub-step t = {t0:.6e} → {t1:.6e} did not converge in {} outer iterations ({})",
                             info.outer_iterations,
@@ -581,10 +569,7 @@ fn run_case_noting(
                     // back to the last accepted state (the increment's start,
                     // or its last converged sub-step): the results and the
                     // summary report it, not the failed iterate
-                    for b in bodies.iter_mut() {
-                        b.restore_start();
-                    }
-                    contacts.restore_start();
+                    restore_start(&mut bodies, &mut contacts);
                     break Err(e);
                 }
             }
@@ -1086,4 +1071,13 @@ fn contact_names(case: &Case, which: &[usize]) -> String {
         })
         .collect::<Vec<_>>()
         .join(", ")
+}
+
+/// Back to the last accepted state of every body and contact (the
+/// increment's start, or its last converged sub-step).
+fn restore_start(bodies: &mut [Body], contacts: &mut ContactSet) {
+    for b in bodies.iter_mut() {
+        b.restore_start();
+    }
+    contacts.restore_start();
 }

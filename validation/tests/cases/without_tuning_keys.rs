@@ -129,12 +129,11 @@ fn curved_beams_frictional_without_tuning_keys() {
     assert!((fy / ny - 1.0).abs() < 0.03, "Fy {fy} vs {ny}");
 }
 
-/// The stripped text with the augmented Lagrangian and `penalty_scale`
-/// on every contact.
+/// [`stripped_augmented`] with `penalty_scale` on every contact.
 fn augmented_at(text: String, scale: f64) -> String {
-    stripped(text).replace(
-        "[[contact]]\n",
-        &format!("[[contact]]\naugmentation = true\npenalty_scale = {scale}\n"),
+    stripped_augmented(text).replace(
+        "augmentation = true\n",
+        &format!("augmentation = true\npenalty_scale = {scale}\n"),
     )
 }
 

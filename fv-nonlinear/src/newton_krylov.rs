@@ -450,7 +450,13 @@ impl NewtonKrylov {
             last_krylov = None;
             match solved {
                 Ok(g) => {
-                    last_krylov = Some(g.iterations);
+                    // a stalled solve counts as one that ran to the limit
+                    // (for a problem that changes its preconditioner then)
+                    last_krylov = Some(if g.stagnated {
+                        g.iterations.max(params.krylov.max_iterations)
+                    } else {
+                        g.iterations
+                    });
                     self.last_krylov = last_krylov;
                     info.krylov_iterations += g.iterations;
                     report.krylov_iterations = g.iterations;

@@ -10,6 +10,7 @@ mod least_squares_gradient;
 mod solid_momentum;
 mod stress_law;
 
+pub mod amg;
 pub mod bicgstab_ilu0;
 pub mod csr;
 pub mod direct;
@@ -21,6 +22,7 @@ pub use least_squares_gradient::LeastSquaresGradient;
 pub use solid_momentum::{Inertia, MomentumParams, RhieChowHistory, SolidMomentum, StateNode};
 pub use stress_law::{current_area_vector, StressLaw};
 
+pub use amg::PcgAmg;
 pub use bicgstab_ilu0::{BicgstabIlu0, BicgstabParams};
 pub use csr::{CsrMatrix, FaceSlots, PatternGrowth};
 pub use direct::{DirectMethod, DirectSolver};

@@ -26,10 +26,6 @@ const TOUCHING_GAP: f64 = 1e-6;
 /// (sparse LU); larger ones by ILU(0).
 pub const LU_LIMIT: usize = 150_000;
 
-/// Unknowns up to which `"auto"` factorises the Jacobian of a 3-D problem
-/// (its LU fills in far more than a 2-D one's).
-pub const LU_LIMIT_3D: usize = 5_000;
-
 enum Factor {
     Lu(Box<DirectSolver>),
     Ilu(Box<BicgstabIlu0>),

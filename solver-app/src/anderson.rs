@@ -234,23 +234,47 @@ impl AndersonAcceleration {
         std::mem::swap(&mut self.f, &mut self.f_prev);
         self.has_prev = true;
         let f = &self.f_prev;
-        // the new column's Gram row and the right-hand side ΔFᵀf, one pass
-        // over each stored column
-        for j in 0..self.depth {
-            if !self.is_valid(j) {
-                self.rhs[j] = 0.0;
-                continue;
+        // the new column's Gram row and the right-hand side ΔFᵀf: one pass
+        // over the new column and f for every GRAM_GROUP stored columns
+        let Some(s) = new_column else {
+            for j in 0..self.depth {
+                self.rhs[j] = if self.is_valid(j) {
+                    dot(&self.df[j], f)
+                } else {
+                    0.0
+                };
             }
-            match new_column {
-                Some(s) => {
-                    let (g, r) = dot_pair(&self.df[j], &self.df[s], f);
-                    self.gram[s * self.depth + j] = g;
-                    self.gram[j * self.depth + s] = g;
-                    self.rhs[j] = r;
-                }
-                None => self.rhs[j] = dot(&self.df[j], f),
+            return self.solve_trimmed();
+        };
+        let mut valid = [0usize; MAX_DEPTH];
+        let mut k = 0;
+        for j in 0..self.depth {
+            if self.is_valid(j) {
+                valid[k] = j;
+                k += 1;
+            } else {
+                self.rhs[j] = 0.0;
             }
         }
+        for group in valid[..k].chunks(GRAM_GROUP) {
+            let empty: &[Vector] = &[];
+            let mut cols = [empty; GRAM_GROUP];
+            for (c, &j) in group.iter().enumerate() {
+                cols[c] = &self.df[j];
+            }
+            let sums = dot_pairs(&cols[..group.len()], &self.df[s], f);
+            for (&j, &(g, r)) in group.iter().zip(&sums) {
+                self.gram[s * self.depth + j] = g;
+                self.gram[j * self.depth + s] = g;
+                self.rhs[j] = r;
+            }
+        }
+        self.solve_trimmed();
+    }
+
+    /// Solves the normal equations of the last step, dropping the oldest
+    /// columns while they are too dependent ([`PIVOT_FLOOR`]).
+    fn solve_trimmed(&mut self) {
         while self.count > 0 && !self.solve_normal_equations() {
             // drop the oldest column
             let oldest = (self.next + self.depth - self.count) % self.depth;
@@ -477,14 +501,41 @@ fn dot(a: &[Vector], b: &[Vector]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x.dot(y)).sum()
 }
 
-/// (a·b, a·c) in one pass over a.
-fn dot_pair(a: &[Vector], b: &[Vector], c: &[Vector]) -> (f64, f64) {
-    a.iter()
-        .zip(b)
-        .zip(c)
-        .fold((0.0, 0.0), |(ab, ac), ((x, y), z)| {
-            (ab + x.dot(y), ac + x.dot(z))
-        })
+/// Stored columns whose Gram entries and ΔFᵀf one pass of [`dot_pairs`] forms.
+const GRAM_GROUP: usize = 3;
+
+/// (a·b, a·c) for every a of `cols` (at most [`GRAM_GROUP`]) in one pass
+/// over b and c; each sum accumulated in index order, as a pass per a
+/// would.
+fn dot_pairs(cols: &[&[Vector]], b: &[Vector], c: &[Vector]) -> [(f64, f64); GRAM_GROUP] {
+    let mut sums = [(0.0, 0.0); GRAM_GROUP];
+    let n = b.len();
+    assert!(
+        c.len() == n && cols.iter().all(|a| a.len() == n),
+        "Anderson: column lengths"
+    );
+    let bc = b.iter().zip(c);
+    let add = |s: &mut (f64, f64), x: &Vector, y: &Vector, z: &Vector| {
+        s.0 += x.dot(y);
+        s.1 += x.dot(z);
+    };
+    let [s0, s1, s2] = &mut sums;
+    match *cols {
+        [a0] => bc.zip(a0).for_each(|((y, z), x0)| add(s0, x0, y, z)),
+        [a0, a1] => bc.zip(a0.iter().zip(a1)).for_each(|((y, z), (x0, x1))| {
+            add(s0, x0, y, z);
+            add(s1, x1, y, z);
+        }),
+        [a0, a1, a2] => bc
+            .zip(a0.iter().zip(a1).zip(a2))
+            .for_each(|((y, z), ((x0, x1), x2))| {
+                add(s0, x0, y, z);
+                add(s1, x1, y, z);
+                add(s2, x2, y, z);
+            }),
+        _ => {}
+    }
+    sums
 }
 
 #[cfg(test)]

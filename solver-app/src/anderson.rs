@@ -234,23 +234,47 @@ impl AndersonAcceleration {
         std::mem::swap(&mut self.f, &mut self.f_prev);
         self.has_prev = true;
         let f = &self.f_prev;
-        // the new column's Gram row and the right-hand side ΔFᵀf, one pass
-        // over each stored column
-        for j in 0..self.depth {
-            if !self.is_valid(j) {
-                self.rhs[j] = 0.0;
-                continue;
+        // the new column's Gram row and the right-hand side ΔFᵀf: one pass
+        // over the new column and f for every GRAM_GROUP stored columns
+        let Some(s) = new_column else {
+            for j in 0..self.depth {
+                self.rhs[j] = if self.is_valid(j) {
+                    dot(&self.df[j], f)
+                } else {
+                    0.0
+                };
             }
-            match new_column {
-                Some(s) => {
-                    let (g, r) = dot_pair(&self.df[j], &self.df[s], f);
-                    self.gram[s * self.depth + j] = g;
-                    self.gram[j * self.depth + s] = g;
-                    self.rhs[j] = r;
-                }
-                None => self.rhs[j] = dot(&self.df[j], f),
+            return self.solve_trimmed();
+        };
+        let mut valid = [0usize; MAX_DEPTH];
+        let mut k = 0;
+        for j in 0..self.depth {
+            if self.is_valid(j) {
+                valid[k] = j;
+                k += 1;
+            } else {
+                self.rhs[j] = 0.0;
             }
         }
+        for group in valid[..k].chunks(GRAM_GROUP) {
+            let empty: &[Vector] = &[];
+            let mut cols = [empty; GRAM_GROUP];
+            for (c, &j) in group.iter().enumerate() {
+                cols[c] = &self.df[j];
+            }
+            let sums = dot_pairs(&cols[..group.len()], &self.df[s], f);
+            for (&j, &(g, r)) in group.iter().zip(&sums) {
+                self.gram[s * self.depth + j] = g;
+                self.gram[j * self.depth + s] = g;
+                self.rhs[j] = r;
+            }
+        }
+        self.solve_trimmed();
+    }
+
+    /// Solves the normal equations of the last step, dropping the oldest
+    /// columns while they are too dependent ([`PIVOT_FLOOR`]).
+    fn solve_trimmed(&mut self) {
         while self.count > 0 && !self.solve_normal_equations() {
             // drop the oldest column
             let oldest = (self.next + self.depth - self.count) % self.depth;
@@ -263,8 +287,18 @@ impl AndersonAcceleration {
     }
 
     /// Entries `range` of the next iterate, x + β f − (ΔX + β ΔF) γ of the
-    /// last [`Self::step`], handed to `out` with their index in `range`.
-    pub fn next_iterate(&self, range: Range<usize>, mut out: impl FnMut(usize, Vector)) {
+    /// last [`Self::step`], written to `out` (of the range's length).
+    ///
+    /// Works on the entries as flat `f64`s, with the operations and their
+    /// order of `x + β f` followed by one column at a time (the same bits
+    /// as the vector form), the columns taken [`MIX_GROUP`] at a time in
+    /// one pass each over `out` (one pass in all at the capped depth 3).
+    pub fn next_iterate(&self, range: Range<usize>, out: &mut [Vector]) {
+        assert_eq!(
+            out.len(),
+            range.len(),
+            "Anderson: output of the wrong length"
+        );
         let beta = self.beta;
         let empty: &[Vector] = &[];
         let mut cols = [(0.0, empty, empty); MAX_DEPTH];
@@ -279,18 +313,14 @@ impl AndersonAcceleration {
                 k += 1;
             }
         }
-        let cols = &cols[..k];
-        let x = &self.x_prev[range.clone()];
-        let f = &self.f_prev[range];
-        for (i, (x, f)) in x.iter().zip(f).enumerate() {
-            // the operations, and their order, of x + β f followed by one
-            // column at a time
-            let mut xi = *x;
-            xi += beta * f;
-            for &(g, dx, df) in cols {
-                xi -= g * (dx[i] + beta * df[i]);
-            }
-            out(i, xi);
+        let out = flat(out);
+        let x = flat_ref(&self.x_prev[range.clone()]);
+        let f = flat_ref(&self.f_prev[range]);
+        let mut groups = cols[..k].chunks(MIX_GROUP);
+        let first = groups.next().unwrap_or(&[]);
+        mix_columns(out, Some((x, f)), beta, first);
+        for group in groups {
+            mix_columns(out, None, beta, group);
         }
     }
 
@@ -302,7 +332,7 @@ impl AndersonAcceleration {
         xc.copy_from_slice(x);
         fc.copy_from_slice(f);
         self.step(beta);
-        self.next_iterate(0..x.len(), |i, v| x[i] = v);
+        self.next_iterate(0..x.len(), x);
     }
 
     /// Whether ring slot `j` holds one of the `count` newest columns.
@@ -391,18 +421,121 @@ fn flat(v: &mut [Vector]) -> &mut [f64] {
     unsafe { std::slice::from_raw_parts_mut(v.as_mut_ptr().cast::<f64>(), 3 * v.len()) }
 }
 
+/// The entries of `v`, three per vector (read-only).
+fn flat_ref(v: &[Vector]) -> &[f64] {
+    // SAFETY: as in `flat`, borrowed immutably
+    unsafe { std::slice::from_raw_parts(v.as_ptr().cast::<f64>(), 3 * v.len()) }
+}
+
+/// Columns of the history applied in one pass of [`mix_columns`].
+const MIX_GROUP: usize = 3;
+
+/// One pass of [`AndersonAcceleration::next_iterate`] over the flat
+/// entries: `out = x + β f` first when `start` gives `(x, f)`, then
+/// `out −= γ (Δx + β Δf)` for each of `cols` (at most [`MIX_GROUP`]), in
+/// that order for every entry. Written as zipped iterators so that the
+/// compiler vectorises it without bounds checks.
+fn mix_columns(
+    out: &mut [f64],
+    start: Option<(&[f64], &[f64])>,
+    beta: f64,
+    cols: &[(f64, &[Vector], &[Vector])],
+) {
+    let n = out.len();
+    let col = |c: usize| -> (f64, &[f64], &[f64]) {
+        cols.get(c).map_or((0.0, &[][..], &[][..]), |&(g, x, f)| {
+            (g, &flat_ref(x)[..n], &flat_ref(f)[..n])
+        })
+    };
+    let (g0, x0, f0) = col(0);
+    let (g1, x1, f1) = col(1);
+    let (g2, x2, f2) = col(2);
+    let step = |xi: &mut f64, g: f64, dx: f64, df: f64| *xi -= g * (dx + beta * df);
+    let Some((x, f)) = start else {
+        for &(g, dx, df) in cols.iter().take(MIX_GROUP) {
+            for ((o, &a), &b) in out.iter_mut().zip(flat_ref(dx)).zip(flat_ref(df)) {
+                step(o, g, a, b);
+            }
+        }
+        return;
+    };
+    let (x, f) = (&x[..n], &f[..n]);
+    let first = |x: f64, f: f64| {
+        let mut xi = x;
+        xi += beta * f;
+        xi
+    };
+    let base = out.iter_mut().zip(x).zip(f);
+    match cols.len() {
+        0 => base.for_each(|((o, &x), &f)| *o = first(x, f)),
+        1 => base
+            .zip(x0.iter().zip(f0))
+            .for_each(|(((o, &x), &f), (&a0, &b0))| {
+                let mut xi = first(x, f);
+                step(&mut xi, g0, a0, b0);
+                *o = xi;
+            }),
+        2 => base.zip(x0.iter().zip(f0)).zip(x1.iter().zip(f1)).for_each(
+            |((((o, &x), &f), (&a0, &b0)), (&a1, &b1))| {
+                let mut xi = first(x, f);
+                step(&mut xi, g0, a0, b0);
+                step(&mut xi, g1, a1, b1);
+                *o = xi;
+            },
+        ),
+        _ => base
+            .zip(x0.iter().zip(f0))
+            .zip(x1.iter().zip(f1))
+            .zip(x2.iter().zip(f2))
+            .for_each(|(((((o, &x), &f), (&a0, &b0)), (&a1, &b1)), (&a2, &b2))| {
+                let mut xi = first(x, f);
+                step(&mut xi, g0, a0, b0);
+                step(&mut xi, g1, a1, b1);
+                step(&mut xi, g2, a2, b2);
+                *o = xi;
+            }),
+    }
+}
+
 fn dot(a: &[Vector], b: &[Vector]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x.dot(y)).sum()
 }
 
-/// (a·b, a·c) in one pass over a.
-fn dot_pair(a: &[Vector], b: &[Vector], c: &[Vector]) -> (f64, f64) {
-    a.iter()
-        .zip(b)
-        .zip(c)
-        .fold((0.0, 0.0), |(ab, ac), ((x, y), z)| {
-            (ab + x.dot(y), ac + x.dot(z))
-        })
+/// Stored columns whose Gram entries and ΔFᵀf one pass of [`dot_pairs`] forms.
+const GRAM_GROUP: usize = 3;
+
+/// (a·b, a·c) for every a of `cols` (at most [`GRAM_GROUP`]) in one pass
+/// over b and c; each sum accumulated in index order, as a pass per a
+/// would.
+fn dot_pairs(cols: &[&[Vector]], b: &[Vector], c: &[Vector]) -> [(f64, f64); GRAM_GROUP] {
+    let mut sums = [(0.0, 0.0); GRAM_GROUP];
+    let n = b.len();
+    assert!(
+        c.len() == n && cols.iter().all(|a| a.len() == n),
+        "Anderson: column lengths"
+    );
+    let bc = b.iter().zip(c);
+    let add = |s: &mut (f64, f64), x: &Vector, y: &Vector, z: &Vector| {
+        s.0 += x.dot(y);
+        s.1 += x.dot(z);
+    };
+    let [s0, s1, s2] = &mut sums;
+    match *cols {
+        [a0] => bc.zip(a0).for_each(|((y, z), x0)| add(s0, x0, y, z)),
+        [a0, a1] => bc.zip(a0.iter().zip(a1)).for_each(|((y, z), (x0, x1))| {
+            add(s0, x0, y, z);
+            add(s1, x1, y, z);
+        }),
+        [a0, a1, a2] => bc
+            .zip(a0.iter().zip(a1).zip(a2))
+            .for_each(|((y, z), ((x0, x1), x2))| {
+                add(s0, x0, y, z);
+                add(s1, x1, y, z);
+                add(s2, x2, y, z);
+            }),
+        _ => {}
+    }
+    sums
 }
 
 #[cfg(test)]

@@ -12,7 +12,7 @@ use crate::springs_in_turn;
 use fv_discretise::{
     CsrMatrix, FaceSlots, LinearSolver, LinearSolverError, MomentumParams, SolveInfo,
 };
-use fv_mesh::Vector;
+use fv_mesh::{Tensor, Vector};
 use std::ops::{ControlFlow, Range};
 use std::time::Instant;
 
@@ -1256,7 +1256,7 @@ impl SegregatedSolver {
         for b in bodies.iter_mut().filter(|b| !b.rigid) {
             let off = b.offset;
             let u = &mut b.momentum.u;
-            anderson.next_iterate(off..off + u.len(), |i, v| u[i] = v);
+            anderson.next_iterate(off..off + u.len(), u);
             let len = mixed_state_len(b);
             write_mixed_state(b, anderson, at..at + len);
             at += len;
@@ -1484,17 +1484,14 @@ fn mixed_state_len(b: &Body) -> usize {
     2 * b.momentum.u_b.len() + 3 * b.momentum.grad_u.len()
 }
 
-/// A body's u_b, n·∇u and cell gradient into `out` ([`mixed_state_len`]).
+/// A body's u_b, n·∇u and cell gradient into `out` ([`mixed_state_len`]);
+/// the gradient as its columns, three vectors per cell.
 fn read_mixed_state(b: &Body, out: &mut [Vector]) {
     let m = &b.momentum;
     let nb = m.u_b.len();
     out[..nb].copy_from_slice(&m.u_b);
     out[nb..2 * nb].copy_from_slice(&m.snd_b);
-    for (cols, g) in out[2 * nb..].chunks_exact_mut(3).zip(&m.grad_u) {
-        for (j, c) in cols.iter_mut().enumerate() {
-            *c = g.column(j).into_owned();
-        }
-    }
+    out[2 * nb..].copy_from_slice(gradient_columns(&m.grad_u));
 }
 
 /// The inverse of [`read_mixed_state`]: the body's part `range` of the
@@ -1502,17 +1499,30 @@ fn read_mixed_state(b: &Body, out: &mut [Vector]) {
 fn write_mixed_state(b: &mut Body, anderson: &AndersonAcceleration, range: Range<usize>) {
     let m = &mut b.momentum;
     let nb = m.u_b.len();
-    let (u_b, snd_b, grad_u) = (&mut m.u_b, &mut m.snd_b, &mut m.grad_u);
-    anderson.next_iterate(range, |i, v| {
-        if i < nb {
-            u_b[i] = v;
-        } else if i < 2 * nb {
-            snd_b[i - nb] = v;
-        } else {
-            let k = i - 2 * nb;
-            grad_u[k / 3].set_column(k % 3, &v);
-        }
-    });
+    let s = range.start;
+    anderson.next_iterate(s..s + nb, &mut m.u_b);
+    anderson.next_iterate(s + nb..s + 2 * nb, &mut m.snd_b);
+    anderson.next_iterate(s + 2 * nb..range.end, gradient_columns_mut(&mut m.grad_u));
+}
+
+// a Tensor is its three columns one after the other, each laid out as a
+// Vector (nalgebra's column-major ArrayStorage, repr(C))
+const _: () = assert!(
+    std::mem::size_of::<Tensor>() == 3 * std::mem::size_of::<Vector>()
+        && std::mem::align_of::<Tensor>() == std::mem::align_of::<Vector>()
+);
+
+/// The columns of the cell gradients, three vectors per cell.
+fn gradient_columns(g: &[Tensor]) -> &[Vector] {
+    // SAFETY: a Tensor is three Vectors without padding (asserted above),
+    // column j at offset j; `g` is 3 len() Vectors for its lifetime
+    unsafe { std::slice::from_raw_parts(g.as_ptr().cast::<Vector>(), 3 * g.len()) }
+}
+
+/// [`gradient_columns`], mutably.
+fn gradient_columns_mut(g: &mut [Tensor]) -> &mut [Vector] {
+    // SAFETY: as in `gradient_columns`, borrowed mutably
+    unsafe { std::slice::from_raw_parts_mut(g.as_mut_ptr().cast::<Vector>(), 3 * g.len()) }
 }
 
 /// Boundary values, gradient and stress, and force residual of one body

@@ -2,9 +2,9 @@
 //! against the thesis's per-mesh forces and its Richardson extrapolation,
 //! 282.8 N; the oscillation of the coarse force against its 1.8 %.
 //!
-//! Both take minutes (the coarse 3, the medium with the coarse 30), so
-//! they are ignored by default; both:
-//! `cargo test --release -p validation --test cases wire_drawing:: -- --ignored --nocapture`.
+//! The coarse run takes about a minute; the medium (with the coarse run
+//! for the extrapolation) about 45 minutes, ignored by default:
+//! `cargo test --release -p validation --test cases wire_drawing_medium -- --ignored --nocapture`.
 use validation::benchmarks::wire_drawing::{
     richardson, run, WireMesh, WireRun, STEADY_FROM, THESIS_FORCES, THESIS_OSCILLATION,
     THESIS_RICHARDSON,
@@ -41,11 +41,9 @@ fn report(name: &str, r: &WireRun) -> (f64, f64) {
 /// The mesh-converged force is 282.8 N; a mesh's force must lie between it
 /// and the thesis's force on the mesh of the same cell count (the
 /// acceptance of issue 43: closer to 282.8 N than the thesis's mesh, the
-/// error from above as the thesis's). The coarse run (2 min 44 s on two
-/// shared cores, 243 outer iterations per increment): 307.3 N, deviation
-/// 1.1 %.
+/// error from above as the thesis's). The coarse run (59 s on two shared
+/// cores, 144 outer iterations per increment): 307.2 N, deviation 1.2 %.
 #[test]
-#[ignore = "about 3 minutes: cargo test --release -p validation --test cases wire_drawing_coarse -- --ignored --nocapture"]
 fn wire_drawing_coarse_force_between_thesis_coarse_and_richardson() {
     let (mean, dev) = report("coarse", &run(WireMesh::Coarse));
     let thesis = THESIS_FORCES[0].1;
@@ -65,7 +63,7 @@ fn wire_drawing_coarse_force_between_thesis_coarse_and_richardson() {
 /// same extrapolation from the thesis's own coarse and medium forces
 /// (297.2 N). The issue's 2 % needs the fine mesh (README.md).
 #[test]
-#[ignore = "about 30 minutes: cargo test --release -p validation --test cases wire_drawing_medium -- --ignored --nocapture"]
+#[ignore = "about 45 minutes: cargo test --release -p validation --test cases wire_drawing_medium -- --ignored --nocapture"]
 fn wire_drawing_medium_force_and_richardson_extrapolation() {
     let (coarse, _) = report("coarse", &run(WireMesh::Coarse));
     let (medium, _) = report("medium", &run(WireMesh::Medium));

@@ -23,8 +23,9 @@ The nose is 2 µm (CLEARANCE) inside the die's bore: the wire's points lie
 on circles, the die's faces are chords of its circles (16 per quarter,
 1 µm inside at their middle), and a wire meshed exactly on the bore would
 start 1 µm into the die, which the penalty of a 190 GPa wire over 0.1 mm
-cells turns into 2 GPa of contact pressure before anything is drawn. The gap closes within
-the first increment (8.3 µm of reduction per 83 µm drawn along the cone).
+cells turns into 2 GPa of contact pressure before anything is drawn. The
+gap closes within the first increment (8.3 µm of reduction per 83 µm
+drawn along the cone).
 The layers are 0.2 mm apart and one falls on x = 0, the die's edge
 between approach and land, so the wire's faceted surface follows it.
 

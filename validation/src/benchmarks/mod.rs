@@ -17,6 +17,7 @@ pub mod shallow_ironing;
 pub mod sphere_block;
 pub mod twisting_blocks;
 pub mod twisting_hemisphere;
+pub mod wire_drawing;
 
 use std::path::{Path, PathBuf};
 

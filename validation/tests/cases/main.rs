@@ -29,4 +29,5 @@ mod sphere_block;
 mod twisting_blocks;
 mod twisting_hemisphere;
 mod uniform_stress;
+mod wire_drawing;
 mod without_tuning_keys;

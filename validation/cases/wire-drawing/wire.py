@@ -1,0 +1,212 @@
+#!/usr/bin/env python3
+"""Wire of the wire-drawing case (thesis §5.4.1): a quarter of a Ø2 mm wire,
+12 mm long, whose nose is already drawn into the die, as a hexahedral mesh
+in Gmsh MSH 4.1 (ascii). No dependency beyond Python 3.
+
+    python3 wire.py                      # coarse: 4 x 4 + 2 x 4 x 3 per section, 60 layers, 2,400 cells
+    python3 wire.py --refine 1 -o wire-medium.msh   # every spacing halved: 19,200 cells
+
+Units mm. The wire axis is x, drawing direction +x; the quarter y >= 0,
+z >= 0 (symmetry planes y = 0 and z = 0). The die (die.geo) has its
+approach cone (half angle 6°) for x in [-2, 0], the bearing (land) of
+radius 0.86 for x in [0, 0.45] and the back relief (half angle 15°) from
+x = 0.45 on.
+
+Radius profile of the wire, nose (x = 0.8) to tail (x = -11.2):
+  r = 0.858 from the nose to x = 0 (in the land and the back relief),
+  r = 0.858 - x tan 6° along the approach cone,
+  a fillet of radius 10 mm from the cone into the cylinder r = 1 (the cone
+  would reach r = 1 at x = -1.351; the fillet lies inside the cone, out of
+  contact, and leaves no kink in the wire's surface),
+  r = 1 up to the tail.
+The nose is 2 µm (CLEARANCE) inside the die's bore: the wire's points lie
+on circles, the die's faces are chords of its circles (16 per quarter,
+1 µm inside at their middle), and a wire meshed exactly on the bore would
+start 1 µm into the die, which the penalty of a 190 GPa wire over 0.1 mm
+cells turns into 2 GPa of contact pressure before anything is drawn. The
+gap closes within the first increment (8.3 µm of reduction per 83 µm
+drawn along the cone).
+The layers are 0.2 mm apart and one falls on x = 0, the die's edge
+between approach and land, so the wire's faceted surface follows it.
+
+Cross-section (quarter disc, unit radius, scaled by r(x)): an O-grid of a
+core square [0, 0.5]^2 with n x n cells and two blocks of n x m cells
+between the square's outer sides and the arc, which carries 2n faces.
+Coarse n = 4, m = 3: 40 cells per section.
+
+Patches: "pulled" (the nose end x = 0.8, drawn), "upstream" (the tail,
+back tension), "outer" (the lateral surface, contact), "symmetry-y"
+(y = 0), "symmetry-z" (z = 0). Volume "wire".
+"""
+import argparse
+import math
+
+NOSE = 0.8
+LENGTH = 12.0
+R_WIRE = 1.0
+R_BEARING = 0.86
+TAN_APPROACH = math.tan(math.radians(6.0))
+FILLET = 10.0
+CORE = 0.5
+CLEARANCE = 0.002
+
+
+def radius(x):
+    """The wire's radius at x (mm), as in the module doc."""
+    r_land = R_BEARING - CLEARANCE
+    if x >= 0.0:
+        return r_land
+    x_kink = -(R_WIRE - r_land) / TAN_APPROACH  # the cone reaches r = 1
+    half = math.radians(3.0)  # half of the 6° turn
+    t = FILLET * math.tan(half)  # tangent length of the fillet
+    x_cone = x_kink + t * math.cos(math.radians(6.0))  # fillet meets the cone
+    x_flat = x_kink - t  # fillet meets the cylinder
+    if x >= x_cone:
+        return r_land - x * TAN_APPROACH
+    if x <= x_flat:
+        return R_WIRE
+    return R_WIRE - FILLET + math.sqrt(FILLET**2 - (x - x_flat) ** 2)
+
+
+def section(n, m):
+    """Unit quarter-disc O-grid: points (y, z) and counter-clockwise quads.
+
+    Also the quads' edges on the arc (for the "outer" patch) as index pairs.
+    """
+    points, index = [], {}
+
+    def node(y, z):
+        key = (round(y, 9), round(z, 9))
+        if key not in index:
+            index[key] = len(points)
+            points.append((y, z))
+        return index[key]
+
+    grid = {}
+    for i in range(n + 1):
+        for j in range(n + 1):
+            grid["c", i, j] = node(CORE * i / n, CORE * j / n)
+    for j in range(n + 1):  # block A: right of the core, arc 0..45°
+        th = math.radians(45.0 * j / n)
+        for k in range(m + 1):
+            f = k / m
+            grid["a", j, k] = node(
+                (1 - f) * CORE + f * math.cos(th), (1 - f) * CORE * j / n + f * math.sin(th)
+            )
+    for i in range(n + 1):  # block B: above the core, arc 90..45°
+        th = math.radians(90.0 - 45.0 * i / n)
+        for k in range(m + 1):
+            f = k / m
+            grid["b", i, k] = node(
+                (1 - f) * CORE * i / n + f * math.cos(th), (1 - f) * CORE + f * math.sin(th)
+            )
+    quads, arc = [], []
+
+    def quad(a, b, c, d):
+        q = [a, b, c, d]
+        area = 0.0
+        for s in range(4):
+            (y0, z0), (y1, z1) = points[q[s]], points[q[(s + 1) % 4]]
+            area += y0 * z1 - y1 * z0
+        quads.append(q if area > 0 else q[::-1])
+
+    for i in range(n):
+        for j in range(n):
+            quad(grid["c", i, j], grid["c", i + 1, j], grid["c", i + 1, j + 1], grid["c", i, j + 1])
+    for b in "ab":
+        for s in range(n):
+            for k in range(m):
+                quad(grid[b, s, k], grid[b, s, k + 1], grid[b, s + 1, k + 1], grid[b, s + 1, k])
+            arc.append((grid[b, s, m], grid[b, s + 1, m]))
+    return points, quads, arc
+
+
+def build(refine):
+    n, m, layers = 4 << refine, 3 << refine, 60 << refine
+    sec, quads, arc = section(n, m)
+    ns = len(sec)
+    xs = [NOSE - LENGTH + LENGTH * l / layers for l in range(layers + 1)]
+    nodes = []
+    for x in xs:
+        r = radius(x)
+        nodes += [(x, r * y, r * z) for (y, z) in sec]
+
+    def tag(l, p):
+        return l * ns + p + 1
+
+    hexes = [
+        [tag(l, p) for p in q] + [tag(l + 1, p) for p in q]
+        for l in range(layers)
+        for q in quads
+    ]
+    patches = {name: [] for name in ("pulled", "upstream", "outer", "symmetry-y", "symmetry-z")}
+    patches["upstream"] = [[tag(0, p) for p in q[::-1]] for q in quads]
+    patches["pulled"] = [[tag(layers, p) for p in q] for q in quads]
+    def outward(a, b, out):
+        """The lateral quad of section edge a-b in layer l, its normal along out."""
+        (y0, z0), (y1, z1) = sec[a], sec[b]
+        # the quad a, a', b', b has the normal (edge a->b) x (+x) in (y, z)
+        if (z1 - z0) * out[0] - (y1 - y0) * out[1] < 0:
+            a, b = b, a
+        return [tag(l, a), tag(l + 1, a), tag(l + 1, b), tag(l, b)]
+
+    for l in range(layers):
+        for a, b in arc:
+            mid = [(sec[a][c] + sec[b][c]) / 2 for c in range(2)]
+            patches["outer"].append(outward(a, b, mid))
+        for q in quads:
+            for s in range(4):
+                a, b = q[s], q[(s + 1) % 4]
+                for name, axis in (("symmetry-y", 0), ("symmetry-z", 1)):
+                    if abs(sec[a][axis]) < 1e-12 and abs(sec[b][axis]) < 1e-12:
+                        out = (-1.0, 0.0) if axis == 0 else (0.0, -1.0)
+                        patches[name].append(outward(a, b, out))
+    return nodes, hexes, patches
+
+
+def write(path, nodes, hexes, patches):
+    names = list(patches)
+    with open(path, "w") as f:
+        f.write("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n")
+        f.write(f"{len(names) + 1}\n")
+        for t, name in enumerate(names, 1):
+            f.write(f'2 {t} "{name}"\n')
+        f.write(f'3 {len(names) + 1} "wire"\n$EndPhysicalNames\n$Entities\n')
+        lo = [min(p[a] for p in nodes) for a in range(3)]
+        hi = [max(p[a] for p in nodes) for a in range(3)]
+        box = " ".join(f"{v:.9g}" for v in lo + hi)
+        f.write(f"0 0 {len(names)} 1\n")
+        for t in range(1, len(names) + 1):
+            f.write(f"{t} {box} 1 {t} 0\n")
+        f.write(f"1 {box} 1 {len(names) + 1} 0\n$EndEntities\n")
+        f.write(f"$Nodes\n1 {len(nodes)} 1 {len(nodes)}\n3 1 0 {len(nodes)}\n")
+        f.writelines(f"{t}\n" for t in range(1, len(nodes) + 1))
+        f.writelines(f"{x:.12g} {y:.12g} {z:.12g}\n" for (x, y, z) in nodes)
+        f.write("$EndNodes\n")
+        n_el = len(hexes) + sum(len(v) for v in patches.values())
+        f.write(f"$Elements\n{len(names) + 1} {n_el} 1 {n_el}\n")
+        e = 1
+        for t, name in enumerate(names, 1):
+            f.write(f"2 {t} 3 {len(patches[name])}\n")
+            for q in patches[name]:
+                f.write(f"{e} {' '.join(map(str, q))}\n")
+                e += 1
+        f.write(f"3 1 5 {len(hexes)}\n")
+        for h in hexes:
+            f.write(f"{e} {' '.join(map(str, h))}\n")
+            e += 1
+        f.write("$EndElements\n")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--refine", type=int, default=0, help="halvings of every spacing")
+    ap.add_argument("-o", "--output", default="wire.msh")
+    a = ap.parse_args()
+    nodes, hexes, patches = build(a.refine)
+    write(a.output, nodes, hexes, patches)
+    print(f"{a.output}: {len(hexes)} hexahedra, {len(nodes)} nodes")
+
+
+if __name__ == "__main__":
+    main()

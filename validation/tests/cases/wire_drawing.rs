@@ -1,0 +1,85 @@
+//! Wire drawing (thesis §5.4.1): the steady drawing force on the quarter
+//! against the thesis's per-mesh forces and its Richardson extrapolation,
+//! 282.8 N; the oscillation of the coarse force against its 1.8 %.
+//!
+//! The coarse run takes about a minute; the medium (with the coarse run
+//! for the extrapolation) about 45 minutes, ignored by default:
+//! `cargo test --release -p validation --test cases wire_drawing_medium -- --ignored --nocapture`.
+use validation::benchmarks::wire_drawing::{
+    richardson, run, WireMesh, WireRun, STEADY_FROM, THESIS_FORCES, THESIS_OSCILLATION,
+    THESIS_RICHARDSON,
+};
+
+/// Prints the run and returns its steady mean force and deviation.
+fn report(name: &str, r: &WireRun) -> (f64, f64) {
+    for ((t, f), n) in r.time.iter().zip(&r.force).zip(&r.outer_iterations) {
+        eprintln!(
+            "  t = {t:.3} s ({:.3} mm drawn): F = {f:.2} N, {n} outer iterations",
+            t * 250.0 / 3.0
+        );
+    }
+    eprintln!(
+        "wire drawing {name}: {} increments, {:.0} outer iterations per increment, {:.0} s, {:.2} µs per cell per outer iteration; {:?}",
+        r.cost.increments,
+        r.cost.outer_iterations as f64 / r.cost.increments.max(1) as f64,
+        r.cost.wall_seconds,
+        r.cost.us_per_cell_iteration(),
+        r.failure
+    );
+    assert!(r.converged, "{name}: {:?}", r.failure);
+    let Some((mean, dev)) = r.steady() else {
+        panic!("{name}: the steady window from {STEADY_FROM} s was not reached")
+    };
+    eprintln!(
+        "  steady force from {STEADY_FROM} s: {mean:.2} N ({:+.2} % against the Richardson {THESIS_RICHARDSON} N), largest deviation {:.2} %",
+        100.0 * (mean / THESIS_RICHARDSON - 1.0),
+        100.0 * dev
+    );
+    (mean, dev)
+}
+
+/// The mesh-converged force is 282.8 N; a mesh's force must lie between it
+/// and the thesis's force on the mesh of the same cell count (the
+/// acceptance of issue 43: closer to 282.8 N than the thesis's mesh, the
+/// error from above as the thesis's). The coarse run (59 s on two shared
+/// cores, 144 outer iterations per increment): 307.2 N, deviation 1.2 %.
+#[test]
+fn wire_drawing_coarse_force_between_thesis_coarse_and_richardson() {
+    let (mean, dev) = report("coarse", &run(WireMesh::Coarse));
+    let thesis = THESIS_FORCES[0].1;
+    assert!(
+        mean > THESIS_RICHARDSON && mean < thesis,
+        "coarse steady force {mean} N outside ({THESIS_RICHARDSON}, {thesis}) N"
+    );
+    assert!(
+        dev < THESIS_OSCILLATION,
+        "coarse force deviates by {dev} from its mean (thesis < {THESIS_OSCILLATION})"
+    );
+}
+
+/// The medium wire (every spacing halved, 19,200 cells) between the
+/// thesis's medium force and 282.8 N; and the Richardson extrapolation of
+/// order 2 (the thesis's) from coarse and medium nearer 282.8 N than the
+/// same extrapolation from the thesis's own coarse and medium forces
+/// (297.2 N). The issue's 2 % needs the fine mesh (README.md).
+#[test]
+#[ignore = "about 45 minutes: cargo test --release -p validation --test cases wire_drawing_medium -- --ignored --nocapture"]
+fn wire_drawing_medium_force_and_richardson_extrapolation() {
+    let (coarse, _) = report("coarse", &run(WireMesh::Coarse));
+    let (medium, _) = report("medium", &run(WireMesh::Medium));
+    let thesis = THESIS_FORCES[1].1;
+    assert!(
+        medium > THESIS_RICHARDSON && medium < thesis,
+        "medium steady force {medium} N outside ({THESIS_RICHARDSON}, {thesis}) N"
+    );
+    let extrapolated = richardson(coarse, medium, 2.0);
+    let thesis_two_meshes = richardson(THESIS_FORCES[0].1, thesis, 2.0);
+    eprintln!(
+        "Richardson (order 2) from {coarse:.2} and {medium:.2} N: {extrapolated:.2} N ({:+.2} % against {THESIS_RICHARDSON} N; the thesis's coarse and medium give {thesis_two_meshes:.2} N)",
+        100.0 * (extrapolated / THESIS_RICHARDSON - 1.0)
+    );
+    assert!(
+        (extrapolated - THESIS_RICHARDSON).abs() < (thesis_two_meshes - THESIS_RICHARDSON).abs(),
+        "Richardson {extrapolated} N vs {THESIS_RICHARDSON} N"
+    );
+}

@@ -5,6 +5,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 use solver_app::case::load_case;
 use solver_app::interrupt::{exit_code, Interrupt};
+use solver_app::results::stdout_line;
 use solver_app::run::{
     check_support, run_case, set_up_with_contacts, RunError, RunOptions, RunOutcome,
 };
@@ -100,7 +101,7 @@ fn main() -> ExitCode {
         .init();
     match cli.command {
         Command::Plot { results_dir } => {
-            let written = |p: &std::path::Path| println!("{}", p.display());
+            let written = |p: &std::path::Path| stdout_line(&p.display().to_string());
             match solver_app::plot::plot_results(&results_dir, &mut { written }) {
                 Ok(report) => {
                     for n in &report.notes {
@@ -124,8 +125,9 @@ fn main() -> ExitCode {
             };
             match set_up_with_contacts(&case) {
                 Ok((bodies, contacts)) => {
-                    print!("{}", solver_app::check::mesh_report(&case, &bodies));
-                    println!("{}", solver_app::check::solver_report(&case));
+                    let mesh = solver_app::check::mesh_report(&case, &bodies);
+                    stdout_line(mesh.trim_end_matches('\n'));
+                    stdout_line(&solver_app::check::solver_report(&case));
                     // the report is the result (standard output); notes
                     // are diagnostics (standard error), as under `fvc run`
                     for n in bodies.iter().flat_map(|b| &b.setup_notes) {
@@ -136,7 +138,7 @@ fn main() -> ExitCode {
                             if let Some(note) = note {
                                 eprintln!("note: {note}");
                             }
-                            println!("case is valid");
+                            stdout_line("case is valid");
                             ExitCode::SUCCESS
                         }
                         Err(e) => {

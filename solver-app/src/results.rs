@@ -50,7 +50,7 @@ impl RunLog {
     /// standard output, where `fvc run … > file` keeps them, and to the
     /// file; progress and diagnostics go to standard error.
     pub fn result(&mut self, msg: &str) {
-        println!("{msg}");
+        stdout_line(msg);
         self.write(msg);
     }
 
@@ -537,4 +537,13 @@ pub fn write_summary(
     )?;
     std::fs::rename(&tmp, &path)?;
     Ok(path)
+}
+
+/// Writes `msg` and a newline to standard output. A reader that has gone
+/// (`fvc check case.toml | head -3`) is not an error of the run: the line
+/// is dropped, where `println!` would panic on the broken pipe.
+pub fn stdout_line(msg: &str) {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    let _ = writeln!(out, "{msg}");
 }

@@ -28,7 +28,7 @@ use fv_discretise::MomentumParams;
 use fv_nonlinear::{
     GmresParams, IterationReport, NewtonError, NewtonInfo, NewtonKrylov, NewtonParams,
 };
-use jacobian::{AssembledJacobian, LU_LIMIT};
+use jacobian::{AssembledJacobian, LU_LIMIT, LU_LIMIT_3D};
 use layout::StateLayout;
 use preconditioning::{Preconditioning, SWITCH_KRYLOV_ITERATIONS};
 use residual::{mean_cell_size, stiffness_area, ModelProblem, ResidualWork};
@@ -189,20 +189,20 @@ impl NewtonKrylovSolver {
     /// `"auto"` may switch to the assembled Jacobian when a Newton step
     /// needs more than [`SWITCH_KRYLOV_ITERATIONS`] Krylov iterations with
     /// the segregated operator ([`ModelProblem::prepare_preconditioner`]),
-    /// if the system is two-dimensional (plane or axisymmetric) and can be
-    /// factorised: up to [`LU_LIMIT`] unknowns. Three-dimensional problems
-    /// keep the segregated operator with its multigrid V-cycles: the LU
-    /// fills in (the twisting hemisphere, 2,457 cells, ran its first 20
-    /// increments in 27–59 s with it, 6.6 s without), and the concentric
-    /// spheres (734 cells), which needed it after the shell buckles with
-    /// IC(0), run without it: 90 increments, at most 36 Newton iterations,
-    /// 10.9 s against 22.1 s switching to it.
+    /// if the system can be factorised: up to [`LU_LIMIT`] unknowns in two
+    /// dimensions (plane or axisymmetric), [`LU_LIMIT_3D`] in three, where
+    /// the LU fills in (the twisting hemisphere, 2,457 cells, ran its first
+    /// 20 increments in 27–59 s with it, 6.6 s without). The concentric
+    /// spheres (734 cells, 2,500 unknowns), which needed it after the shell
+    /// buckles with IC(0), run without it with the multigrid V-cycles: 90
+    /// increments, at most 36 Newton iterations, 10.9 s against 22.1 s
+    /// switching to it.
     fn may_switch(&self) -> bool {
         let solved = self.layout.unsolved.iter().filter(|u| !**u).count();
+        let limit = if solved <= 2 { LU_LIMIT } else { LU_LIMIT_3D };
         self.preconditioning == Preconditioning::Auto
             && self.jacobian.is_none()
-            && solved <= 2
-            && solved * self.layout.n_nodes <= LU_LIMIT
+            && solved * self.layout.n_nodes <= limit
     }
 
     /// The Newton solve of the current first iterate, its counts added to

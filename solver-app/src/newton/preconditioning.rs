@@ -10,8 +10,8 @@ pub enum Preconditioning {
     /// [`SWITCH_KRYLOV_ITERATIONS`] Krylov iterations per Newton step, the
     /// problem is two-dimensional (plane or axisymmetric) and the system
     /// is small enough to factorise ([`super::jacobian::LU_LIMIT`]).
-    /// Three-dimensional problems keep the segregated operator, whose
-    /// components are solved by a multigrid V-cycle there.
+    /// Three-dimensional problems switch only when small
+    /// ([`super::jacobian::LU_LIMIT_3D`]).
     #[default]
     Auto,
     /// `"segregated"`: the compact Laplacian per displacement component

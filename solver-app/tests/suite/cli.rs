@@ -132,6 +132,25 @@ fn check_prints_the_mesh_report() {
 }
 
 #[test]
+fn check_into_a_closed_pipe_ends_without_a_panic() {
+    // `fvc check case.toml | head -1`: the reader is gone before the
+    // report is written
+    let dir = tempfile::tempdir().unwrap();
+    let p = write(dir.path(), "case.toml", GOOD.as_bytes());
+    let mut child = Command::new(env!("CARGO_BIN_EXE_fvc"))
+        .args(["check", p.to_str().unwrap()])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("fvc runs");
+    drop(child.stdout.take());
+    let out = child.wait_with_output().expect("fvc ends");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!err.contains("panicked"), "{err}");
+    assert_eq!(out.status.code(), Some(0), "{err}");
+}
+
+#[test]
 fn ten_malformed_inputs_exit_2_with_precise_messages() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();

@@ -183,10 +183,13 @@ impl Hierarchy {
         }
         self.members.clear();
         self.members.resize(n, 0);
-        let mut next: Vec<u32> = self.member_ptr[..n_coarse].to_vec();
+        // the marker array serves first as each aggregate's next free slot
+        self.marker.clear();
+        self.marker.extend_from_slice(&self.member_ptr[..n_coarse]);
         for (i, &g) in fine.aggregate.iter().enumerate() {
-            self.members[next[g as usize] as usize] = i as u32;
-            next[g as usize] += 1;
+            let slot = &mut self.marker[g as usize];
+            self.members[*slot as usize] = i as u32;
+            *slot += 1;
         }
         self.marker.clear();
         self.marker.resize(n_coarse, UNSEEN);

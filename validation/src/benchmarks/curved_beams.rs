@@ -32,6 +32,9 @@ pub struct CurvedBeams {
     pub normal_force: Vec<f64>,
     /// See `normal_force`, mm².
     pub contact_area: Vec<f64>,
+    /// Nonlinear iterations of each increment (failed attempts and
+    /// sub-steps included).
+    pub iterations: Vec<usize>,
     /// Cost of the run.
     pub cost: RunCost,
     /// Why the run stopped early.
@@ -39,6 +42,11 @@ pub struct CurvedBeams {
 }
 
 impl CurvedBeams {
+    /// Most nonlinear iterations in one increment.
+    pub fn max_iterations(&self) -> usize {
+        self.iterations.iter().copied().max().unwrap_or(0)
+    }
+
     /// Largest |Fx| and the slide where it occurs.
     pub fn fx_peak(&self) -> (f64, f64) {
         peak(&self.slide, &self.fx)
@@ -102,6 +110,7 @@ pub fn run_text(text: &str) -> CurvedBeams {
         fy: driven_ends(&history, "Fy"),
         normal_force: contact_column(&history, "normal_force"),
         contact_area: contact_column(&history, "contact_area"),
+        iterations: history.outer_iterations(),
         cost: RunCost::of(&out),
         failure: if out.converged {
             None

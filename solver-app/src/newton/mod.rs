@@ -76,8 +76,10 @@ pub fn newton_params(settings: &SolverSettings) -> NewtonParams {
         restart: linear.restart,
         max_iterations: linear.max_iterations,
         tolerance: linear.tolerance,
-        // the segregated operator's inner solves vary from one
-        // application to the next
+        // the segregated operator's IC(0)-PCG inner solves vary from one
+        // application to the next; a fixed preconditioner (multigrid,
+        // factorisations) gets plain GMRES instead
+        // (`NonlinearProblem::linear_preconditioner`)
         flexible: true,
     };
     p.forcing.max = linear.tolerance;

@@ -449,6 +449,13 @@ impl SegregatedOperator {
         }
     }
 
+    /// Whether [`Self::apply`] is a fixed linear map between two
+    /// assemblies (sparse Cholesky or multigrid V-cycles; IC(0)-PCG to a
+    /// tolerance is not).
+    pub fn is_linear(&self) -> bool {
+        self.direct || self.multigrid
+    }
+
     /// z = P⁻¹ r (interleaved node-major vectors).
     pub fn apply(&mut self, r: &[f64], z: &mut [f64]) {
         for c in 0..3 {

@@ -25,7 +25,10 @@ use hierarchy::Hierarchy;
 
 /// PCG with an aggregation multigrid V-cycle as preconditioner.
 /// The levels and all work vectors are kept from one factorisation to
-/// the next; a solve allocates nothing.
+/// the next; a solve allocates nothing after the first. The finest level
+/// is the factorised matrix itself, not a copy: every solve and V-cycle
+/// is given that matrix again (its pattern is checked, its values must be
+/// the factorised ones).
 #[derive(Debug, Clone, Default)]
 pub struct PcgAmg {
     n: usize,
@@ -40,16 +43,22 @@ pub struct PcgAmg {
 }
 
 impl PcgAmg {
-    /// A solver for `n` unknowns with default [`PcgParams`].
+    /// A solver for `n` unknowns with default [`PcgParams`] (the PCG work
+    /// vectors are allocated by the first solve: a preconditioner that
+    /// only applies V-cycles needs none).
     pub fn new(n: usize) -> Self {
         PcgAmg {
             n,
-            r: vec![0.0; n],
-            z: vec![0.0; n],
-            p: vec![0.0; n],
-            q: vec![0.0; n],
             ..Default::default()
         }
+    }
+
+    /// An error unless `a` is of the factorised matrix's pattern.
+    fn check_factorised(&self, a: &CsrMatrix) -> Result<(), LinearSolverError> {
+        if !self.factorised || !self.hierarchy.is_for(a) {
+            return Err(LinearSolverError::NotFactorised);
+        }
+        check_len("matrix", a.n(), self.n)
     }
 
     /// Unknowns per level, finest first (after a factorisation).
@@ -72,23 +81,22 @@ impl PcgAmg {
         Ok(())
     }
 
-    /// `z = M⁻¹ r`: one V-cycle.
+    /// `z = M⁻¹ r`: one V-cycle; `a` is the factorised matrix.
     pub fn apply_preconditioner(
         &mut self,
+        a: &CsrMatrix,
         r: &[f64],
         z: &mut [f64],
     ) -> Result<(), LinearSolverError> {
-        if !self.factorised {
-            return Err(LinearSolverError::NotFactorised);
-        }
+        self.check_factorised(a)?;
         check_len("r", r.len(), self.n)?;
         check_len("z", z.len(), self.n)?;
-        self.hierarchy.v_cycle(r, z);
+        self.hierarchy.v_cycle(a, r, z);
         Ok(())
     }
 
     /// Solves `a x = b` by PCG to `‖r‖ ≤ tolerance ‖r₀‖`; `x` is the
-    /// initial guess. `a` may differ in values from the factorised matrix.
+    /// initial guess, `a` the factorised matrix.
     pub fn solve(
         &mut self,
         a: &CsrMatrix,
@@ -96,18 +104,18 @@ impl PcgAmg {
         x: &mut [f64],
         params: &PcgParams,
     ) -> Result<SolveInfo, LinearSolverError> {
-        if !self.factorised {
-            return Err(LinearSolverError::NotFactorised);
-        }
-        check_len("matrix", a.n(), self.n)?;
+        self.check_factorised(a)?;
         check_len("b", b.len(), self.n)?;
         check_len("x", x.len(), self.n)?;
+        for v in [&mut self.r, &mut self.z, &mut self.p, &mut self.q] {
+            v.resize(self.n, 0.0);
+        }
         let (r, z, p, q) = (&mut self.r, &mut self.z, &mut self.p, &mut self.q);
         let (mut info, target) = krylov_start(a, b, x, r, params.tolerance, params.max_iterations)?;
         let Some(target) = target else {
             return Ok(info);
         };
-        self.hierarchy.v_cycle(r, z);
+        self.hierarchy.v_cycle(a, r, z);
         p.copy_from_slice(z);
         let mut rz: f64 = r.iter().zip(z.iter()).map(|(a, b)| a * b).sum();
         for it in 1..=params.max_iterations {
@@ -139,7 +147,7 @@ impl PcgAmg {
                 info.converged = true;
                 break;
             }
-            self.hierarchy.v_cycle(r, z);
+            self.hierarchy.v_cycle(a, r, z);
             let rz_new: f64 = r.iter().zip(z.iter()).map(|(a, b)| a * b).sum();
             let beta = rz_new / rz;
             rz = rz_new;

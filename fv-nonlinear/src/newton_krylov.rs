@@ -323,7 +323,9 @@ impl NewtonKrylov {
     pub fn new(n: usize, params: NewtonParams) -> Self {
         NewtonKrylov {
             params,
-            gmres: Gmres::new(n, params.krylov.restart, params.krylov.flexible),
+            // the preconditioned basis of flexible GMRES is allocated by the
+            // first solve that needs it
+            gmres: Gmres::new(n, params.krylov.restart, false),
             f: vec![0.0; n],
             dx: vec![0.0; n],
             x_trial: vec![0.0; n],
@@ -439,6 +441,7 @@ impl NewtonKrylov {
             };
             let krylov = GmresParams {
                 tolerance: eta,
+                flexible: params.krylov.flexible && !system.problem.linear_preconditioner(),
                 ..params.krylov
             };
             let solved = self

@@ -67,6 +67,16 @@ pub trait NonlinearProblem {
     /// Jacobian, as the segregated operator does: F(x + δ) ≈ F(x) − P δ).
     fn precondition(&mut self, r: &[f64], z: &mut [f64]);
 
+    /// Whether [`Self::precondition`] is one fixed linear map from one
+    /// [`Self::prepare_preconditioner`] to the next (a factorisation, a
+    /// multigrid V-cycle), not an inner iterative solve to a tolerance.
+    /// Then GMRES need not be flexible: x += M⁻¹ V y gives the iterate of
+    /// x += Z y without keeping the preconditioned vectors Z (Saad 1993,
+    /// §2), half the Krylov basis's memory.
+    fn linear_preconditioner(&self) -> bool {
+        false
+    }
+
     /// How many constraints the last [`Frozen::Renew`] evaluation found
     /// active that were not at the one before it (contact faces that came
     /// into contact): a step that activates them crossed a kink of F that

@@ -2,7 +2,7 @@
 //! next (Vaněk, Mandel & Brezina 1996, "Algebraic multigrid by smoothed
 //! aggregation for second and fourth order elliptic problems", §3): three
 //! passes over the graph of strong connections.
-use super::sparse::Sparse;
+use super::sparse::View;
 
 /// Not yet in an aggregate.
 const FREE: u32 = u32::MAX;
@@ -22,12 +22,7 @@ fn strong(aij: f64, inv_aii: f64, inv_ajj: f64, theta: f64) -> bool {
 /// 2. A still free unknown joins the aggregate of pass 1 it is most
 ///    strongly connected to.
 /// 3. The rest form aggregates with their free strong neighbours.
-pub(crate) fn aggregate(
-    a: &Sparse,
-    inv_diag: &[f64],
-    theta: f64,
-    aggregate: &mut Vec<u32>,
-) -> usize {
+pub(crate) fn aggregate(a: View, inv_diag: &[f64], theta: f64, aggregate: &mut Vec<u32>) -> usize {
     let n = a.n_rows;
     aggregate.clear();
     aggregate.resize(n, FREE);
@@ -84,12 +79,12 @@ pub(crate) fn aggregate(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::amg::sparse::Sparse;
 
     /// The 1-D Laplacian of n unknowns (Dirichlet at both ends).
     fn laplacian_1d(n: usize) -> Sparse {
         let mut m = Sparse {
             n_rows: n,
-            n_cols: n,
             ptr: vec![0],
             ..Default::default()
         };
@@ -113,7 +108,7 @@ mod tests {
     fn a_chain_is_cut_into_aggregates_of_three_that_cover_every_unknown() {
         let a = laplacian_1d(10);
         let mut agg = Vec::new();
-        let n = aggregate(&a, &[0.5; 10], 0.08, &mut agg);
+        let n = aggregate(a.view(), &[0.5; 10], 0.08, &mut agg);
         // pass 1 takes (0,1), (2,3,4), (5,6,7); pass 2 attaches 8 to (5,6,7)
         // and 9 is left for pass 3, or so: every unknown in one aggregate,
         // each aggregate contiguous and of 1–4 unknowns

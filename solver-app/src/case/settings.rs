@@ -285,6 +285,10 @@ pub struct SolverSettings {
     pub acceleration_depth: usize,
     /// Whether the case gives `acceleration_depth`.
     pub acceleration_depth_given: bool,
+    /// Whether the case gives `linear.restart` (else Newton's GMRES
+    /// restart is held to a memory budget on large meshes:
+    /// `newton::budgeted_restart`).
+    pub restart_given: bool,
     /// First iterate of each increment (default linear under large strain,
     /// none otherwise).
     pub predictor: Predictor,
@@ -308,6 +312,7 @@ impl Default for SolverSettings {
             acceleration: Acceleration::None,
             acceleration_depth: 10,
             acceleration_depth_given: false,
+            restart_given: false,
             predictor: Predictor::None,
             coupling_fallback: CouplingFallback::Implicit,
         }
@@ -582,11 +587,13 @@ pub(crate) fn solver(
     } else {
         LinearSettings::for_acceleration(acceleration)
     };
+    let mut restart_given = false;
     let linear = match t.get("linear") {
         None => linear_defaults,
         Some(l) => {
             let node = l.node();
             let table = node.table()?;
+            restart_given = table.has("restart");
             let s = linear(&table, &linear_defaults)?;
             if s.method == LinearMethod::Gmres && !newton {
                 if let Some(m) = table.get("method") {
@@ -626,6 +633,7 @@ pub(crate) fn solver(
         })?,
         acceleration,
         acceleration_depth_given: t.has("acceleration_depth"),
+        restart_given,
         acceleration_depth: t.opt("acceleration_depth", d.acceleration_depth, |n| {
             let m = n.usize_min(1)?;
             if m > crate::anderson::MAX_DEPTH {

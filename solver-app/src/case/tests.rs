@@ -188,6 +188,7 @@ restart_every = 20
             acceleration: Acceleration::Anderson,
             acceleration_depth: 8,
             acceleration_depth_given: true,
+            restart_given: false,
             predictor: Predictor::Linear,
             coupling_fallback: CouplingFallback::Implicit,
         }

@@ -38,6 +38,33 @@ use segregated_operator::SegregatedOperator;
 /// multiplier update or force correction).
 const MAX_NEWTON_SOLVES: usize = 40;
 
+/// Meshes of at least this many cells hold GMRES's basis to
+/// [`KRYLOV_BASIS_BYTES_PER_CELL`] unless the case gives `linear.restart`
+/// ([`budgeted_restart`]); every case of the contact battery is smaller.
+const KRYLOV_BUDGET_CELLS: usize = 100_000;
+
+/// Bytes per cell of the Krylov basis (restart + 1 vectors of the state)
+/// on a large mesh: GMRES(20) rather than GMRES(30) on the 64³ box
+/// (835,584 unknowns), the run within 2 kB per cell. Measured (Newton /
+/// Krylov iterations, peak RSS), box 64³ with multigrid: restart 30: 3 /
+/// 74, 546 MB; 25: 3 / 74, 514 MB; 20: 3 / 73, 481 MB. The contact
+/// battery at restart 20 instead of 30: docs/kernel-performance.md.
+const KRYLOV_BASIS_BYTES_PER_CELL: usize = 540;
+
+/// Shortest restart the budget cuts to.
+const MIN_BUDGETED_RESTART: usize = 10;
+
+/// GMRES's restart for `n` unknowns on `cells` cells: `restart` on small
+/// meshes, else the longest within [`KRYLOV_BASIS_BYTES_PER_CELL`] (at
+/// least [`MIN_BUDGETED_RESTART`]).
+fn budgeted_restart(restart: usize, n: usize, cells: usize) -> usize {
+    if cells < KRYLOV_BUDGET_CELLS || n == 0 {
+        return restart;
+    }
+    let vectors = KRYLOV_BASIS_BYTES_PER_CELL * cells / (8 * n);
+    restart.min(vectors.saturating_sub(1).max(MIN_BUDGETED_RESTART))
+}
+
 /// The Newton–Krylov method and its workspaces (built once per run).
 pub struct NewtonKrylovSolver {
     newton: NewtonKrylov,
@@ -76,8 +103,10 @@ pub fn newton_params(settings: &SolverSettings) -> NewtonParams {
         restart: linear.restart,
         max_iterations: linear.max_iterations,
         tolerance: linear.tolerance,
-        // the segregated operator's inner solves vary from one
-        // application to the next
+        // the segregated operator's IC(0)-PCG inner solves vary from one
+        // application to the next; a fixed preconditioner (multigrid,
+        // factorisations) gets plain GMRES instead
+        // (`NonlinearProblem::linear_preconditioner`)
         flexible: true,
     };
     p.forcing.max = linear.tolerance;
@@ -94,7 +123,18 @@ impl NewtonKrylovSolver {
         let n = layout.len();
         let preconditioning = settings.linear.preconditioner;
         let direct = settings.linear.method == LinearMethod::Direct;
-        let attempt_params = newton_params(settings);
+        let mut attempt_params = newton_params(settings);
+        let mut notes = Vec::new();
+        if !settings.restart_given {
+            let restart = budgeted_restart(attempt_params.krylov.restart, n, layout.n_cells);
+            if restart < attempt_params.krylov.restart {
+                notes.push(format!(
+                    "GMRES restart {restart} instead of {} on {n} unknowns: its basis held to {} B per cell (set [solver] linear.restart to choose)",
+                    attempt_params.krylov.restart, KRYLOV_BASIS_BYTES_PER_CELL
+                ));
+                attempt_params.krylov.restart = restart;
+            }
+        }
         let final_attempt_params = NewtonParams {
             stall_abort_iterations: 0,
             rate_abort_window: 0,
@@ -122,7 +162,7 @@ impl NewtonKrylovSolver {
             step_times: (0.0, 0.0),
             cell_size: mean_cell_size(bodies),
             stiffness_area: stiffness_area(bodies),
-            notes: Vec::new(),
+            notes,
             layout,
             times: PhaseTimes::default(),
         }
@@ -424,5 +464,28 @@ impl crate::nonlinear_solver::NonlinearSolver for NewtonKrylovSolver {
 
     fn take_notes(&mut self) -> Vec<String> {
         std::mem::take(&mut self.notes)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_krylov_basis_of_a_large_mesh_is_held_to_its_budget() {
+        // the 64³ box: 262,144 cells and 16,384 traction face nodes, three
+        // components each
+        let (cells, n) = (262_144, 3 * (262_144 + 16_384));
+        // 540 B per cell = 21.2 vectors of 8 n bytes: GMRES(20)
+        assert_eq!(budgeted_restart(30, n, cells), 20);
+        assert!((20 + 1) * 8 * n <= KRYLOV_BASIS_BYTES_PER_CELL * cells);
+        // a shorter restart is kept; small meshes keep theirs
+        assert_eq!(budgeted_restart(12, n, cells), 12);
+        assert_eq!(budgeted_restart(30, 3 * 19_904, 19_904), 30);
+        // never below the floor, however many unknowns a cell has
+        assert_eq!(
+            budgeted_restart(30, 100 * cells, cells),
+            MIN_BUDGETED_RESTART
+        );
     }
 }

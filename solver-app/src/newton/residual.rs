@@ -477,6 +477,12 @@ impl NonlinearProblem for ModelProblem<'_> {
         r
     }
 
+    /// The factorised Jacobian, a sparse Cholesky factor or the multigrid
+    /// V-cycles are; the IC(0)-PCG inner solves are not.
+    fn linear_preconditioner(&self) -> bool {
+        self.jacobian.is_some() || self.preconditioner.is_linear()
+    }
+
     fn precondition(&mut self, r: &[f64], z: &mut [f64]) {
         let t = Instant::now();
         let ok = match self.jacobian.as_mut() {

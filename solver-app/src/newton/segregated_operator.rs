@@ -94,7 +94,7 @@ impl Factor {
                 s.solve(a, r, z, &p).map(|i| i.iterations)
             }
             Factor::Direct(s) => s.solve(a, r, z).map(|_| 1),
-            Factor::Multigrid(s) => s.apply_preconditioner(r, z).map(|_| 1),
+            Factor::Multigrid(s) => s.apply_preconditioner(a, r, z).map(|_| 1),
         }
     }
 }
@@ -447,6 +447,13 @@ impl SegregatedOperator {
                 }
             }
         }
+    }
+
+    /// Whether [`Self::apply`] is a fixed linear map between two
+    /// assemblies (sparse Cholesky or multigrid V-cycles; IC(0)-PCG to a
+    /// tolerance is not).
+    pub fn is_linear(&self) -> bool {
+        self.direct || self.multigrid
     }
 
     /// z = P⁻¹ r (interleaved node-major vectors).

@@ -361,8 +361,8 @@ fn run_case_noting(
         let mut t0 = t_prev;
         let mut h = t - t_prev;
         let mut cuts = 0;
-        // converged sub-steps since the last halving or doubling
-        let mut easy = 0;
+        // converged sub-steps in a row since the last halving or doubling
+        let mut converged_in_a_row = 0;
         // attempts that diverged: the next ones start more relaxed
         let mut diverged = 0;
         let result = loop {
@@ -519,7 +519,7 @@ fn run_case_noting(
                 }
                 restore_start(&mut bodies, &mut contacts);
                 cuts += 1;
-                easy = 0;
+                converged_in_a_row = 0;
                 h *= 0.5;
                 log.warn(&format!(
                     "increment {k}: step t = {} → {} failed ({why}); redone in steps of {}",
@@ -577,9 +577,13 @@ fn run_case_noting(
                         break Err(e);
                     }
                     t0 = t1;
-                    easy += usize::from(info.converged);
-                    if easy >= GROWTH_AFTER && cuts > 0 {
-                        easy = 0;
+                    converged_in_a_row = if info.converged {
+                        converged_in_a_row + 1
+                    } else {
+                        0
+                    };
+                    if converged_in_a_row >= GROWTH_AFTER && cuts > 0 {
+                        converged_in_a_row = 0;
                         cuts -= 1;
                         h *= 2.0;
                     }

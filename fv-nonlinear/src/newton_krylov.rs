@@ -386,9 +386,9 @@ impl NewtonKrylov {
         // residual at the start of the current run of steps without
         // progress, and the run's length
         let (mut stall_base, mut stall_steps) = (fnorm, 0);
-        // whether a Newton step of the current run without progress met
-        // a negative stiffness along itself
-        let mut unstable = false;
+        // the most negative stiffness along itself that a Newton step of
+        // the current run without progress met (0: none)
+        let mut most_negative = 0.0f64;
         let mut continuation = params.pseudo_transient.map(PseudoTransient::new);
         // the largest stiffness along a Newton step of this solve
         let mut stiffest = 0.0f64;
@@ -658,10 +658,12 @@ impl NewtonKrylov {
             // the steps of the damped motion are no Newton steps to judge
             // progress by
             if fnorm < STALL_PROGRESS * stall_base || continuing {
-                (stall_base, stall_steps, unstable) = (fnorm, 0, false);
+                (stall_base, stall_steps, most_negative) = (fnorm, 0, 0.0);
             } else {
                 stall_steps += 1;
-                unstable |= report.curvature < -report.curvature_noise;
+                if report.curvature < -report.curvature_noise {
+                    most_negative = most_negative.min(report.curvature);
+                }
             }
             let target = (params.tolerance * reference).max(problem.roundoff_floor());
             // Newton creeping within CONTINUATION_BAND × the floor band,
@@ -672,11 +674,11 @@ impl NewtonKrylov {
                 let trigger = c.params().stall_trigger;
                 if c.sigma() == 0.0
                     && trigger > 0
-                    && unstable
+                    && most_negative < 0.0
                     && stall_steps >= trigger
                     && fnorm > target
                     && fnorm <= CONTINUATION_BAND * params.floor_factor * target
-                    && c.rescue()
+                    && c.rescue_unstable(most_negative)
                 {
                     info.rescues += 1;
                     (stall_base, stall_steps) = (fnorm, 0);

@@ -122,6 +122,17 @@ pub struct PseudoTransientParams {
     pub soft_step: f64,
     /// See `soft_step`.
     pub soft_shift: f64,
+    /// When a stalled Newton run switches the continuation on
+    /// ([`Self::stall_trigger`]) having measured a negative stiffness κ
+    /// along one of its steps, σ starts at this many times |κ| (at most
+    /// `initial`) instead of at `initial`: the halvings from `initial`
+    /// down to [`Self::negative_curvature_margin`] × |κ| are steps that
+    /// barely move along the unstable mode. 8 is one halving above the
+    /// margin. Concentric spheres, second buckling at 8.3 mm (κ = −4 ×
+    /// 10⁻⁵): 42 → 36 Newton iterations in the increment, the run's
+    /// largest; the curved beams (μ = 0 / 0.3 / 0.6), the die drawing and
+    /// the twisting hemisphere unchanged. 0: start at `initial`.
+    pub unstable_start: f64,
 }
 
 impl Default for PseudoTransientParams {
@@ -138,6 +149,7 @@ impl Default for PseudoTransientParams {
             reentry_factor: 10.0,
             soft_step: 0.0,
             soft_shift: 0.1,
+            unstable_start: 8.0,
         }
     }
 }
@@ -203,6 +215,19 @@ impl PseudoTransient {
         self.sigma = self.sigma.max(sigma);
         self.rescues += 1;
         true
+    }
+
+    /// After a stalled Newton run that met the negative stiffness
+    /// `curvature` (δᵀ(−J)δ / δᵀDδ < 0) along a step: switches the
+    /// continuation on at [`PseudoTransientParams::unstable_start`] × its
+    /// magnitude (at most `initial`), or as [`Self::rescue`] does when
+    /// that is off, the stiffness is not negative, or σ is already on.
+    pub fn rescue_unstable(&mut self, curvature: f64) -> bool {
+        let start = (self.params.unstable_start * -curvature).min(self.params.initial);
+        if self.sigma > 0.0 || !(start > 0.0) {
+            return self.rescue();
+        }
+        self.rescue_at(start)
     }
 
     /// After an accepted step of length `lambda` from residual norm
@@ -283,6 +308,32 @@ mod tests {
         assert!(p.rescue());
         assert!(p.rescue_at(1e-4));
         assert!((p.sigma() - 3e-3).abs() < 1e-15);
+    }
+
+    #[test]
+    fn a_stall_on_an_unstable_mode_starts_the_shift_above_its_stiffness() {
+        let mut p = PseudoTransient::new(PseudoTransientParams::default());
+        // κ = −4e-5: σ = 8 × 4e-5, not the initial 0.1
+        assert!(p.rescue_unstable(-4e-5));
+        assert!((p.sigma() - 3.2e-4).abs() < 1e-18);
+        // one halving reaches the margin (4 |κ|), which holds it
+        p.accepted(1.0, 1.0, 1.0, -4e-5);
+        p.accepted(1.0, 1.0, 1.0, -4e-5);
+        p.accepted(1.0, 1.0, 1.0, -4e-5);
+        assert!((p.sigma() - 1.6e-4).abs() < 1e-18);
+        // a very negative stiffness starts at `initial` at most
+        let mut q = PseudoTransient::new(PseudoTransientParams::default());
+        assert!(q.rescue_unstable(-1.0));
+        assert_eq!(q.sigma(), 0.1);
+        // off, or no negative stiffness: as `rescue`
+        let mut r = PseudoTransient::new(PseudoTransientParams {
+            unstable_start: 0.0,
+            ..Default::default()
+        });
+        assert!(r.rescue_unstable(-4e-5));
+        assert_eq!(r.sigma(), 0.1);
+        assert!(r.rescue_unstable(f64::NAN));
+        assert!((r.sigma() - 1.0).abs() < 1e-15);
     }
 
     #[test]

@@ -127,11 +127,16 @@ pub struct PseudoTransientParams {
     /// along one of its steps, σ starts at this many times |κ| (at most
     /// `initial`) instead of at `initial`: the halvings from `initial`
     /// down to [`Self::negative_curvature_margin`] × |κ| are steps that
-    /// barely move along the unstable mode. 8 is one halving above the
-    /// margin. Concentric spheres, second buckling at 8.3 mm (κ = −4 ×
-    /// 10⁻⁵): 42 → 36 Newton iterations in the increment, the run's
-    /// largest; the curved beams (μ = 0 / 0.3 / 0.6), the die drawing and
-    /// the twisting hemisphere unchanged. 0: start at `initial`.
+    /// barely move along the unstable mode. 0 (the default): start at
+    /// `initial`. At 8 (one halving above the margin) the concentric
+    /// spheres' second buckling at 8.3 mm (κ = −4 × 10⁻⁵) took 36 Newton
+    /// iterations instead of 42, the curved beams and the die drawing on
+    /// the coarse mesh unchanged; but the die-drawing validation tests
+    /// failed (steady force spread 2.95 % over 2 %; the fine mesh inverted
+    /// a cell at increment 49: stalls there measure κ ≈ −10⁻⁸, so σ
+    /// started near 10⁻⁷, no damping at all). With the start held to at
+    /// least `drop_below` × `initial` they passed, but the fine mesh took
+    /// 312 s instead of 16. Off until a start that serves both is found.
     pub unstable_start: f64,
 }
 
@@ -149,7 +154,7 @@ impl Default for PseudoTransientParams {
             reentry_factor: 10.0,
             soft_step: 0.0,
             soft_shift: 0.1,
-            unstable_start: 8.0,
+            unstable_start: 0.0,
         }
     }
 }
@@ -312,7 +317,11 @@ mod tests {
 
     #[test]
     fn a_stall_on_an_unstable_mode_starts_the_shift_above_its_stiffness() {
-        let mut p = PseudoTransient::new(PseudoTransientParams::default());
+        let on = PseudoTransientParams {
+            unstable_start: 8.0,
+            ..Default::default()
+        };
+        let mut p = PseudoTransient::new(on);
         // κ = −4e-5: σ = 8 × 4e-5, not the initial 0.1
         assert!(p.rescue_unstable(-4e-5));
         assert!((p.sigma() - 3.2e-4).abs() < 1e-18);
@@ -322,7 +331,7 @@ mod tests {
         p.accepted(1.0, 1.0, 1.0, -4e-5);
         assert!((p.sigma() - 1.6e-4).abs() < 1e-18);
         // a very negative stiffness starts at `initial` at most
-        let mut q = PseudoTransient::new(PseudoTransientParams::default());
+        let mut q = PseudoTransient::new(on);
         assert!(q.rescue_unstable(-1.0));
         assert_eq!(q.sigma(), 0.1);
         // off, or no negative stiffness: as `rescue`

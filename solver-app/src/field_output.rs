@@ -1,6 +1,6 @@
 //! Adapts the solver's bodies and contacts to the HDF5/XDMF writer
 //! ([`crate::output`]): cell connectivity once, then per written increment
-//! the cell fields, point displacement (cell-to-point least squares) and the
+//! the cell fields, current points (cell-to-point least squares) and the
 //! contact fields of every contact patch, copied out and handed to the
 //! writer's thread ([`crate::background_writer`]).
 use std::path::Path;
@@ -16,7 +16,6 @@ use fv_mesh::{CellToPoint, Vector};
 #[derive(Default)]
 struct BodyBuffers {
     points: Vec<[f64; 3]>,
-    point_displacement: Vec<[f64; 3]>,
     displacement: Vec<[f64; 3]>,
     stress: Vec<[f64; 6]>,
 }
@@ -127,7 +126,6 @@ impl FieldOutput {
         for (b, buf) in bodies.iter().zip(buffers.iter_mut()) {
             let np = b.mesh.n_points();
             buf.points.resize(np, [0.0; 3]);
-            buf.point_displacement.resize(np, [0.0; 3]);
             let initial = b.initial_points();
             if !b.rigid {
                 // current points: the mesh (initial, or the start of the
@@ -144,26 +142,17 @@ impl FieldOutput {
                 if let Some(w) = &b.wedge_points {
                     w.apply_all(&mut point_u);
                 }
-                for ((x, pd), ((u, xm), x0)) in buf
+                for (x, (u, xm)) in buf
                     .points
                     .iter_mut()
-                    .zip(&mut buf.point_displacement)
-                    .zip(point_u.iter().zip(&b.mesh.points).zip(initial))
+                    .zip(point_u.iter().zip(&b.mesh.points))
                 {
                     let xc = xm + u;
-                    let d = xc - x0;
-                    *pd = [d.x, d.y, d.z];
                     *x = [xc.x, xc.y, xc.z];
                 }
             } else {
-                for ((x, pd), x0) in buf
-                    .points
-                    .iter_mut()
-                    .zip(buf.point_displacement.iter_mut())
-                    .zip(initial)
-                {
+                for (x, x0) in buf.points.iter_mut().zip(initial) {
                     let u = b.rigid_displacement(x0);
-                    *pd = [u.x, u.y, u.z];
                     *x = [x0.x + u.x, x0.y + u.y, x0.z + u.z];
                 }
             }
@@ -273,7 +262,6 @@ impl FieldOutput {
                 displacement: buf.displacement,
                 stress: buf.stress,
                 plastic_strain: b.momentum.law.plastic_strain().map(<[f64]>::to_vec),
-                point_displacement: buf.point_displacement,
                 patches: patches.into_iter().map(|p| owned_patch(b, p)).collect(),
             })
             .collect();

@@ -108,7 +108,7 @@ const STRESS: &str = "force/length^2";
 /// results layout and the writer's additions).
 fn field(name: &str) -> Option<Field> {
     let (units, components, location) = match name {
-        "points" | "point_displacement" => (LENGTH, XYZ, "point"),
+        "points" => (LENGTH, XYZ, "point"),
         "displacement" => (LENGTH, XYZ, "cell"),
         "stress" => (STRESS, SYMMETRIC, "cell"),
         "von_mises" => (STRESS, &[][..], "cell"),
@@ -202,7 +202,6 @@ mod tests {
             "stress",
             "von_mises",
             "plastic_strain",
-            "point_displacement",
             "face_centres",
             "contact_pressure",
             "contact_traction",

@@ -33,7 +33,6 @@ const RESERVED: &[&str] = &[
     "stress",
     "von_mises",
     "plastic_strain",
-    "point_displacement",
     "xdmf",
 ];
 
@@ -67,7 +66,6 @@ const INDEX_CHUNK: usize = 256;
 /// /time/<k>/<body>/stress             (n_cells×6: xx,yy,zz,xy,yz,xz)
 /// /time/<k>/<body>/von_mises          + (n_cells)
 /// /time/<k>/<body>/plastic_strain     (n_cells; when given)
-/// /time/<k>/<body>/point_displacement + (n_points×3)
 /// /time/<k>/<body>/xdmf/…             + per shown cell: contact_pressure, contact_traction, gap of the
 ///                                     patch face the cell bounds (0, 0, NaN for none); with type 42 the
 ///                                     cell fields repeated per shown cell
@@ -521,7 +519,6 @@ impl ResultsWriter {
             let (np, nc) = (state.grid.n_points, state.n_cells);
             let w = |f: &str| format!("increment {k}, body '{}': {f}", b.name);
             check_len(&w("points"), b.points.len(), np)?;
-            check_len(&w("point_displacement"), b.point_displacement.len(), np)?;
             check_len(&w("displacement"), b.displacement.len(), nc)?;
             check_len(&w("stress"), b.stress.len(), nc)?;
             if let Some(ps) = b.plastic_strain {
@@ -596,14 +593,6 @@ impl ResultsWriter {
         if let Some(ps) = b.plastic_strain {
             put(l, &bg, &bp, "plastic_strain", ps, &[nc])?;
         }
-        put(
-            l,
-            &bg,
-            &bp,
-            "point_displacement",
-            b.point_displacement.as_flattened(),
-            &[np, 3],
-        )?;
         self.write_shown_cells(l, &bg, &bp, bi, b, &vm, &indices)?;
         for (p, &index) in b.patches.iter().zip(&indices) {
             let nf = p.faces.n_faces();

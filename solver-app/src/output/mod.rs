@@ -18,7 +18,6 @@
 //!     displacement: &[[0.0; 3]],
 //!     stress: &[[0.0; 6]],
 //!     plastic_strain: None,
-//!     point_displacement: &[[0.0; 3]; 4],
 //!     patches: vec![PatchIncrement {
 //!         name: "bottom",
 //!         faces: face,
@@ -410,8 +409,6 @@ pub struct BodyIncrement<'a> {
     pub stress: &'a [[f64; 6]],
     /// Equivalent plastic strain per cell (plastic models only).
     pub plastic_strain: Option<&'a [f64]>,
-    /// Point displacement (`n_points`): `points` minus the initial points.
-    pub point_displacement: &'a [[f64; 3]],
     /// Contact (or other reported) patches.
     pub patches: Vec<PatchIncrement<'a>>,
 }

@@ -19,12 +19,15 @@
 //!
 //! Grids reference the body's *current* points (`/time/<k>/<body>/points`),
 //! so ParaView shows the deformed shape without any filter; the document
-//! says so in an `Information` element.
+//! says so in an `Information` element. There is no point displacement
+//! field (issue 45: it was the largest field after the stress, and the
+//! vector a "Warp By Vector" would have applied a second time); a point's
+//! displacement is `/time/<k>/<body>/points − /mesh/<body>/points`.
 use std::fmt::Write;
 
 /// Every field of every grid of a time step: name, XDMF type, centre.
 /// `plastic_strain` is left out of a step in which no body has it.
-pub(crate) const FIELDS: [(&str, &str, &str); 9] = [
+pub(crate) const FIELDS: [(&str, &str, &str); 8] = [
     ("displacement", "Vector", "Cell"),
     ("stress", "Tensor6", "Cell"),
     ("von_mises", "Scalar", "Cell"),
@@ -33,7 +36,6 @@ pub(crate) const FIELDS: [(&str, &str, &str); 9] = [
     ("contact_traction", "Vector", "Cell"),
     ("gap", "Scalar", "Cell"),
     ("block", "Scalar", "Cell"),
-    ("point_displacement", "Vector", "Node"),
 ];
 
 /// What the XDMF needs to know about a body.
@@ -87,10 +89,9 @@ pub(crate) fn esc(s: &str) -> String {
 
 /// What the document says about itself (`Information` elements).
 const CONFIGURATION: &str = "The geometry of every time step is the current (deformed) \
-configuration: /time/<k>/<body>/points = /mesh/<body>/points + point_displacement. \
-Do not apply Warp By Vector with point_displacement: it adds the displacement a second \
-time. Warp By Vector with scale factor -1 shows the reference configuration; \
-scale factor s shows the displacement 1 + s times.";
+configuration: /time/<k>/<body>/points; the displacement of a point is \
+/time/<k>/<body>/points - /mesh/<body>/points. Do not apply Warp By Vector with a \
+displacement: it adds the displacement a second time.";
 const FIELD_NOTE: &str = "Every body and patch grid carries every field, so that a \
 reader which merges them keeps all: body cells have the contact_pressure, \
 contact_traction and gap of the contact patch face they bound (0, 0 and NaN if none); \
@@ -194,10 +195,9 @@ pub(crate) fn render_step(h5_name: &str, bodies: &[BodyGrid], inc: &IncrementRec
             "plastic_strain" if !plastic => format!("{mesh}/zero"),
             "contact_pressure" | "contact_traction" | "gap" => format!("{base}/xdmf/{field}"),
             "block" => format!("{mesh}/block"),
-            "point_displacement" => format!("{base}/point_displacement"),
             f => format!("{cells}/{f}"),
         };
-        attributes(&mut x, &h5, b.vis_cells, b.n_points, any_plastic, source);
+        attributes(&mut x, &h5, b.vis_cells, any_plastic, source);
         let _ = writeln!(x, "{ind}</Grid>");
         for &p in patches {
             let pg = &b.patches[p];
@@ -215,10 +215,9 @@ pub(crate) fn render_step(h5_name: &str, bodies: &[BodyGrid], inc: &IncrementRec
                     format!("{faces}/xdmf/{field}")
                 }
                 "block" => format!("{mesh}/block"),
-                "point_displacement" => format!("{base}/point_displacement"),
                 f => format!("{faces}/{f}"),
             };
-            attributes(&mut x, &h5, pg.n_faces, b.n_points, any_plastic, source);
+            attributes(&mut x, &h5, pg.n_faces, any_plastic, source);
             let _ = writeln!(x, "{ind}</Grid>");
         }
     }
@@ -267,7 +266,6 @@ fn attributes(
     x: &mut String,
     h5: &str,
     n_cells: usize,
-    n_points: usize,
     plastic: bool,
     source: impl Fn(&str) -> String,
 ) {
@@ -276,12 +274,11 @@ fn attributes(
         if name == "plastic_strain" && !plastic {
             continue;
         }
-        let rows = if center == "Node" { n_points } else { n_cells };
         let (dims, number) = match (name, kind) {
-            ("block", _) => (vec![rows], "Int"),
-            (_, "Vector") => (vec![rows, 3], "Float"),
-            (_, "Tensor6") => (vec![rows, 6], "Float"),
-            _ => (vec![rows], "Float"),
+            ("block", _) => (vec![n_cells], "Int"),
+            (_, "Vector") => (vec![n_cells, 3], "Float"),
+            (_, "Tensor6") => (vec![n_cells, 6], "Float"),
+            _ => (vec![n_cells], "Float"),
         };
         let _ = writeln!(
             x,

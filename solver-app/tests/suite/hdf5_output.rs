@@ -126,7 +126,6 @@ struct Fields {
     displacement: Vec<[f64; 3]>,
     stress: Vec<[f64; 6]>,
     plastic: Vec<f64>,
-    point_displacement: Vec<[f64; 3]>,
     centres: Vec<[f64; 3]>,
     pressure: Vec<f64>,
     traction: Vec<[f64; 3]>,
@@ -157,7 +156,6 @@ fn fields(mesh: &CellMeshData, n_faces: usize, k: usize, seed: f64) -> Fields {
         plastic: (0..mesh.n_cells())
             .map(|c| 1e-3 * s * (c + 1) as f64)
             .collect(),
-        point_displacement: pd,
         centres: (0..n_faces).map(|f| [f as f64 + 0.5, 0.5, s]).collect(),
         pressure: (0..n_faces).map(|f| s * (f + 1) as f64).collect(),
         traction: (0..n_faces)
@@ -198,7 +196,6 @@ fn body<'a>(
         displacement: &f.displacement,
         stress: &f.stress,
         plastic_strain: plastic.then_some(f.plastic.as_slice()),
-        point_displacement: &f.point_displacement,
         patches,
     }
 }
@@ -287,11 +284,6 @@ fn check_increment(f: &hdf5::File, hex: &CellMeshData, tet: &CellMeshData, k: us
         let b = format!("time/{k}/{name}");
         check_vec3(f, &format!("{b}/points"), &fx.points);
         check_vec3(f, &format!("{b}/displacement"), &fx.displacement);
-        check_vec3(
-            f,
-            &format!("{b}/point_displacement"),
-            &fx.point_displacement,
-        );
         let (shape, s) = read_f64(f, &format!("{b}/stress"));
         assert_eq!(shape, vec![mesh.n_cells(), 6]);
         assert_eq!(s, fx.stress.as_flattened());
@@ -346,7 +338,6 @@ fn check_increment(f: &hdf5::File, hex: &CellMeshData, tet: &CellMeshData, k: us
         members.sort();
         let mut expected = vec![
             "displacement",
-            "point_displacement",
             "points",
             "stress",
             "von_mises",
@@ -725,7 +716,6 @@ fn two_body_results_read_back_exactly() {
         "stress:Tensor6",
         "von_mises:Scalar",
         "plastic_strain:Scalar",
-        "point_displacement:Vector",
         "contact_pressure:Scalar",
         "contact_traction:Vector",
         "gap:Scalar",
@@ -742,7 +732,7 @@ fn two_body_results_read_back_exactly() {
         g.1.iter().map(|(name, _)| name.clone()).collect()
     };
     assert_eq!(grids.len(), 4);
-    assert_eq!(fields(&grids[0]).len(), 9);
+    assert_eq!(fields(&grids[0]).len(), 8);
     for g in &grids {
         assert_eq!(fields(g), fields(&grids[0]), "{}", g.0);
     }
@@ -765,11 +755,6 @@ fn two_body_results_read_back_exactly() {
         ("block/top", "gap", "/time/2/block/top/gap"),
         ("block/top", "block", "/mesh/block/patches/top/block"),
         ("tets", "plastic_strain", "/mesh/tets/xdmf/zero"),
-        (
-            "tets",
-            "point_displacement",
-            "/time/2/tets/point_displacement",
-        ),
         (
             "tets/bottom",
             "plastic_strain",

@@ -12,6 +12,7 @@
 //! nodes (`ISTORE_K`); the run as fast as uncompressed.
 use std::sync::OnceLock;
 
+use hdf5::plist::dataset_create::Layout;
 use hdf5::types::VarLenUnicode;
 use hdf5::{Dataset, Group, H5Type};
 
@@ -23,6 +24,12 @@ const DEFLATE_LEVEL: u8 = 1;
 /// bytes into planes of an eighth of it: 64 kB chunks stored the ironing
 /// 17 % larger than 256 kB ones, 1 MB ones no smaller.
 const CHUNK_BYTES: usize = 256 * 1024;
+
+/// Largest dataset (bytes) stored in its object header, uncompressed
+/// (HDF5's compact layout): a chunked one costs a chunk B-tree node of
+/// about 300 B besides its compressed data, more than the data of a patch
+/// of a few faces or of most restart arrays.
+const COMPACT_BYTES: usize = 512;
 
 /// Whether the linked libhdf5 has the deflate filter (zlib); without it
 /// datasets are written contiguous and uncompressed.
@@ -42,7 +49,8 @@ fn chunk_rows(shape: &[usize], elem: usize) -> usize {
 
 /// Creates dataset `name` in `g` with `data` (row-major, `shape`),
 /// chunked and compressed (shuffle, deflate) when the library has deflate
-/// and the data is not empty; a field with its attributes.
+/// and the data is larger than [`COMPACT_BYTES`], in the object header
+/// when it is not empty and no larger; a field with its attributes.
 pub(super) fn create<T: H5Type>(
     g: &Group,
     name: &str,
@@ -65,7 +73,9 @@ pub(super) fn create_at<T: H5Type>(
     let ds = if data.is_empty() {
         builder.create(name)?
     } else {
-        let ds = if deflate_available() {
+        let ds = if std::mem::size_of_val(data) <= COMPACT_BYTES {
+            builder.layout(Layout::Compact).create(name)?
+        } else if deflate_available() {
             let mut chunk = shape.to_vec();
             chunk[0] = chunk_rows(shape, std::mem::size_of::<T>());
             builder
@@ -192,6 +202,13 @@ mod tests {
         let empty = create::<f64>(&f, "gap", &[], &[0]).unwrap();
         assert_eq!(empty.shape(), [0]);
         assert!(empty.filters().is_empty());
+        // 64 values of 8 B: in the object header, as written
+        let few: Vec<f64> = (0..64).map(|i| 0.1 * i as f64).collect();
+        let ds = create(&f, "contact_pressure", &few, &[64]).unwrap();
+        assert_eq!(ds.layout(), Layout::Compact);
+        assert_eq!(ds.read_raw::<f64>().unwrap(), few);
+        let ds = create(&f, "von_mises", &[few.as_slice(), &[7.0]].concat(), &[65]).unwrap();
+        assert_eq!(ds.layout(), Layout::Chunked);
     }
 
     #[test]

@@ -132,7 +132,7 @@ impl ResultsWriter {
         let label = h5_path.display().to_string();
         let l = label.as_str();
         let file = File::with_options()
-            .with_fapl(|p| p.file_locking(false))
+            .with_fapl(super::access)
             .open_rw(&h5_path)
             .at(|| label.clone())?;
         // later increments go

@@ -8,7 +8,7 @@ use std::path::Path;
 use crate::background_writer::{BackgroundWriter, OwnedBody, OwnedIncrement, OwnedPatch};
 use crate::contact_coupling::ContactSet;
 use crate::model::Body;
-use crate::output::{CellMeshData, OutputError, ResultsWriter};
+use crate::output::{CellMeshData, OutputError, Precision, ResultsWriter};
 use fv_mesh::{CellToPoint, Vector};
 
 /// Per-body fields of one written increment, allocated for the write only
@@ -54,14 +54,15 @@ fn mesh_data(b: &Body) -> Result<CellMeshData, OutputError> {
 impl FieldOutput {
     /// Creates `<dir>/<title>.h5` and `.xdmf` with the meshes of all
     /// bodies and the lines of the case its restart states fit
-    /// ([`crate::restart::case_signature`]).
+    /// ([`crate::restart::case_signature`]); fields in `precision`.
     pub fn create(
         dir: &Path,
         title: &str,
         bodies: &[Body],
         signature: &[String],
+        precision: Precision,
     ) -> Result<Self, OutputError> {
-        Self::open(dir, title, bodies, signature, None)
+        Self::open(dir, title, bodies, signature, None, precision)
     }
 
     /// Opens the results of an earlier run of the case to continue them
@@ -73,8 +74,9 @@ impl FieldOutput {
         bodies: &[Body],
         signature: &[String],
         keep: usize,
+        precision: Precision,
     ) -> Result<Self, OutputError> {
-        Self::open(dir, title, bodies, signature, Some(keep))
+        Self::open(dir, title, bodies, signature, Some(keep), precision)
     }
 
     fn open(
@@ -83,6 +85,7 @@ impl FieldOutput {
         bodies: &[Body],
         signature: &[String],
         keep: Option<usize>,
+        precision: Precision,
     ) -> Result<Self, OutputError> {
         let data: Vec<CellMeshData> = bodies.iter().map(mesh_data).collect::<Result<_, _>>()?;
         let named: Vec<(&str, &CellMeshData)> = bodies
@@ -95,6 +98,7 @@ impl FieldOutput {
             Some(k) => ResultsWriter::reopen(dir, title, &named, k)?,
         };
         w.write_case_signature(signature)?;
+        w.set_precision(precision);
         let writer = BackgroundWriter::start(w)?;
         Ok(FieldOutput { writer })
     }

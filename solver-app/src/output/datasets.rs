@@ -16,6 +16,8 @@ use hdf5::plist::dataset_create::Layout;
 use hdf5::types::VarLenUnicode;
 use hdf5::{Dataset, Group, H5Type};
 
+use super::Precision;
+
 /// Deflate level: zlib's fast end (levels 1–3; 6 stored the ironing 6 %
 /// smaller at twice the cost).
 const DEFLATE_LEVEL: u8 = 1;
@@ -96,6 +98,25 @@ pub(super) fn create_at<T: H5Type>(
         field.write_attributes(&ds)?;
     }
     Ok(ds)
+}
+
+/// [`create_at`] for the values of a field, stored in `precision`
+/// (single: each value rounded to the nearest `f32`).
+pub(super) fn create_field(
+    g: &Group,
+    name: &str,
+    data: &[f64],
+    shape: &[usize],
+    location: Option<&'static str>,
+    precision: Precision,
+) -> hdf5::Result<Dataset> {
+    match precision {
+        Precision::Double => create_at(g, name, data, shape, location),
+        Precision::Single => {
+            let single: Vec<f32> = data.iter().map(|&x| x as f32).collect();
+            create_at(g, name, &single, shape, location)
+        }
+    }
 }
 
 /// What a field dataset holds.

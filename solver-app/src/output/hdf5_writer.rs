@@ -23,7 +23,7 @@ use super::xdmf;
 use super::xdmf_document::{self, BodyGrid, IncrementRecord, PatchGrid};
 
 mod restart;
-use super::{von_mises, BodyIncrement, CellMeshData, OutputError, PatchIncrement};
+use super::{von_mises, BodyIncrement, CellMeshData, OutputError, PatchIncrement, Precision};
 
 /// Names a patch may not take: they are datasets or groups of
 /// `/time/<k>/<body>/`.
@@ -114,6 +114,8 @@ pub struct ResultsWriter {
     index: (Dataset, Dataset),
     /// Grids numbered so far (the XDMF's `block` field).
     n_blocks: usize,
+    /// How the fields of the increments written next are stored.
+    precision: Precision,
 }
 
 struct BodyState {
@@ -171,19 +173,22 @@ fn put<T: H5Type>(
     Ok(())
 }
 
-/// [`put`] with the attribute `location` given ([`super::datasets::create_at`]).
-fn put_at<T: H5Type>(
+/// [`put`] for a field's values, stored in `precision`, with the
+/// attribute `location` given ([`super::datasets::create_field`]).
+#[allow(clippy::too_many_arguments)]
+fn put_field(
     label: &str,
     g: &Group,
     gpath: &str,
     name: &str,
-    data: &[T],
+    data: &[f64],
     shape: &[usize],
     location: Option<&'static str>,
+    precision: Precision,
 ) -> Result<(), OutputError> {
     let at = || format!("{label}:{gpath}/{name}");
     debug_assert_eq!(shape.iter().product::<usize>(), data.len());
-    super::datasets::create_at(g, name, data, shape, location).at(at)?;
+    super::datasets::create_field(g, name, data, shape, location, precision).at(at)?;
     Ok(())
 }
 
@@ -412,9 +417,17 @@ impl ResultsWriter {
             history: None,
             index: (increments, times),
             n_blocks: bodies.len(),
+            precision: Precision::Double,
         };
         w.write_xdmf()?;
         Ok(w)
+    }
+
+    /// Stores the fields of the increments written from now on in
+    /// `precision` (the writer starts with [`Precision::Double`]); the
+    /// XDMF gives each increment's own.
+    pub fn set_precision(&mut self, precision: Precision) {
+        self.precision = precision;
     }
 
     /// Path of the `.h5` file.
@@ -462,6 +475,7 @@ impl ResultsWriter {
             k,
             time,
             bodies: Vec::with_capacity(self.bodies.len()),
+            precision: self.precision,
         };
         for (bi, &ii) in order.iter().enumerate() {
             let inc = &bodies[ii];
@@ -589,68 +603,71 @@ impl ResultsWriter {
             .iter()
             .map(|p| self.patch_index(l, bi, p))
             .collect::<Result<Vec<_>, _>>()?;
+        let pr = self.precision;
+        let field = |g: &Group, gp: &str, name: &str, v: &[f64], shape: &[usize], at| {
+            put_field(l, g, gp, name, v, shape, at, pr)
+        };
         let state = &self.bodies[bi];
         let (np, nc) = (state.grid.n_points, state.n_cells);
         let bp = format!("{tp}/{}", b.name);
         let bg = group(l, tg, tp, b.name)?;
         let vm: Vec<f64> = b.stress.iter().map(von_mises).collect();
-        put(l, &bg, &bp, "points", b.points.as_flattened(), &[np, 3])?;
-        put(
-            l,
+        field(&bg, &bp, "points", b.points.as_flattened(), &[np, 3], None)?;
+        field(
             &bg,
             &bp,
             "displacement",
             b.displacement.as_flattened(),
             &[nc, 3],
+            None,
         )?;
-        put(l, &bg, &bp, "stress", b.stress.as_flattened(), &[nc, 6])?;
-        put(l, &bg, &bp, "von_mises", &vm, &[nc])?;
+        field(&bg, &bp, "stress", b.stress.as_flattened(), &[nc, 6], None)?;
+        field(&bg, &bp, "von_mises", &vm, &[nc], None)?;
         if let Some(ps) = b.plastic_strain {
-            put(l, &bg, &bp, "plastic_strain", ps, &[nc])?;
+            field(&bg, &bp, "plastic_strain", ps, &[nc], None)?;
         }
         self.write_shown_cells(l, &bg, &bp, bi, b, &vm, &indices)?;
         for (p, &index) in b.patches.iter().zip(&indices) {
             let nf = p.faces.n_faces();
             let pp = format!("{bp}/{}", p.name);
             let pg = group(l, &bg, &bp, p.name)?;
-            put(
-                l,
+            field(
                 &pg,
                 &pp,
                 "face_centres",
                 p.face_centres.as_flattened(),
                 &[nf, 3],
+                None,
             )?;
-            put(l, &pg, &pp, "contact_pressure", p.contact_pressure, &[nf])?;
-            put(
-                l,
+            field(
+                &pg,
+                &pp,
+                "contact_pressure",
+                p.contact_pressure,
+                &[nf],
+                None,
+            )?;
+            field(
                 &pg,
                 &pp,
                 "contact_traction",
                 p.contact_traction.as_flattened(),
                 &[nf, 3],
+                None,
             )?;
-            put(l, &pg, &pp, "gap", p.gap, &[nf])?;
+            field(&pg, &pp, "gap", p.gap, &[nf], None)?;
             // for the XDMF: the fields of the cells under the faces
             let cells = &self.bodies[bi].face_cells[index];
             let xp = format!("{pp}/xdmf");
             let xg = group(l, &pg, &pp, "xdmf")?;
             let disp = expand(cells, b.displacement);
             let at = Some("face");
-            put_at(
-                l,
-                &xg,
-                &xp,
-                "displacement",
-                disp.as_flattened(),
-                &[nf, 3],
-                at,
-            )?;
+            field(&xg, &xp, "displacement", disp.as_flattened(), &[nf, 3], at)?;
             let stress = expand(cells, b.stress);
-            put_at(l, &xg, &xp, "stress", stress.as_flattened(), &[nf, 6], at)?;
-            put_at(l, &xg, &xp, "von_mises", &expand(cells, &vm), &[nf], at)?;
+            field(&xg, &xp, "stress", stress.as_flattened(), &[nf, 6], at)?;
+            field(&xg, &xp, "von_mises", &expand(cells, &vm), &[nf], at)?;
             if let Some(ps) = b.plastic_strain {
-                put_at(l, &xg, &xp, "plastic_strain", &expand(cells, ps), &[nf], at)?;
+                field(&xg, &xp, "plastic_strain", &expand(cells, ps), &[nf], at)?;
             }
         }
         Ok(indices)
@@ -673,6 +690,10 @@ impl ResultsWriter {
         vm: &[f64],
         indices: &[usize],
     ) -> Result<(), OutputError> {
+        let pr = self.precision;
+        let field = |g: &Group, gp: &str, name: &str, v: &[f64], shape: &[usize], at| {
+            put_field(l, g, gp, name, v, shape, at, pr)
+        };
         let state = &self.bodies[bi];
         let nc = state.n_cells;
         let mut pressure = vec![0.0; nc];
@@ -691,33 +712,25 @@ impl ResultsWriter {
         let at = Some("cell");
         match &state.cell_map {
             None => {
-                put_at(l, &xg, &xp, "contact_pressure", &pressure, &[nc], at)?;
+                field(&xg, &xp, "contact_pressure", &pressure, &[nc], at)?;
                 let t = traction.as_flattened();
-                put_at(l, &xg, &xp, "contact_traction", t, &[nc, 3], at)?;
-                put_at(l, &xg, &xp, "gap", &gap, &[nc], at)?;
+                field(&xg, &xp, "contact_traction", t, &[nc, 3], at)?;
+                field(&xg, &xp, "gap", &gap, &[nc], at)?;
             }
             Some(map) => {
                 let n = map.len();
                 let p = expand(map, &pressure);
-                put_at(l, &xg, &xp, "contact_pressure", &p, &[n], at)?;
+                field(&xg, &xp, "contact_pressure", &p, &[n], at)?;
                 let t = expand(map, &traction);
-                put_at(
-                    l,
-                    &xg,
-                    &xp,
-                    "contact_traction",
-                    t.as_flattened(),
-                    &[n, 3],
-                    at,
-                )?;
-                put_at(l, &xg, &xp, "gap", &expand(map, &gap), &[n], at)?;
+                field(&xg, &xp, "contact_traction", t.as_flattened(), &[n, 3], at)?;
+                field(&xg, &xp, "gap", &expand(map, &gap), &[n], at)?;
                 let d = expand(map, b.displacement);
-                put(l, &xg, &xp, "displacement", d.as_flattened(), &[n, 3])?;
+                field(&xg, &xp, "displacement", d.as_flattened(), &[n, 3], None)?;
                 let s = expand(map, b.stress);
-                put(l, &xg, &xp, "stress", s.as_flattened(), &[n, 6])?;
-                put(l, &xg, &xp, "von_mises", &expand(map, vm), &[n])?;
+                field(&xg, &xp, "stress", s.as_flattened(), &[n, 6], None)?;
+                field(&xg, &xp, "von_mises", &expand(map, vm), &[n], None)?;
                 if let Some(ps) = b.plastic_strain {
-                    put(l, &xg, &xp, "plastic_strain", &expand(map, ps), &[n])?;
+                    field(&xg, &xp, "plastic_strain", &expand(map, ps), &[n], None)?;
                 }
             }
         }

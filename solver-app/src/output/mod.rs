@@ -41,6 +41,31 @@ mod xdmf_document;
 pub use hdf5_writer::ResultsWriter;
 pub use restart_file::{read_restart_index, read_restart_state, RestartIndex};
 
+/// How the field datasets of an increment store their values (`[output]
+/// precision`, issue 45). The mesh, the history, the index and the
+/// restart states are double whatever it says.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Precision {
+    /// 8-byte floats: the values as the solver computed them.
+    #[default]
+    Double,
+    /// 4-byte floats, rounded to nearest (relative rounding at most
+    /// 6e-8, 2⁻²⁴): half the bytes, and about half the compressed size
+    /// of fields whose last digits are noise. Abaqus writes its output
+    /// database in single precision unless asked otherwise.
+    Single,
+}
+
+impl Precision {
+    /// Bytes per value (the XDMF's `Precision`).
+    pub fn bytes(self) -> usize {
+        match self {
+            Precision::Double => 8,
+            Precision::Single => 4,
+        }
+    }
+}
+
 use std::path::PathBuf;
 
 /// VTK cell type codes accepted in [`CellMeshData::types`].

@@ -25,6 +25,8 @@
 //! displacement is `/time/<k>/<body>/points − /mesh/<body>/points`.
 use std::fmt::Write;
 
+use super::Precision;
+
 /// Every field of every grid of a time step: name, XDMF type, centre.
 /// `plastic_strain` is left out of a step in which no body has it.
 pub(crate) const FIELDS: [(&str, &str, &str); 8] = [
@@ -63,12 +65,14 @@ pub(crate) struct PatchGrid {
 }
 
 /// One written increment: its number, time and, per body, whether it has
-/// plastic strain and which of the body's patches were written.
+/// plastic strain and which of the body's patches were written; and the
+/// precision of its fields (the datasets under `/time/<k>`).
 #[derive(Debug, Clone)]
 pub(crate) struct IncrementRecord {
     pub k: usize,
     pub time: f64,
     pub bodies: Vec<(bool, Vec<usize>)>,
+    pub precision: Precision,
 }
 
 /// Escapes a string for an XML attribute or text node.
@@ -144,7 +148,7 @@ pub(crate) fn render(h5_name: &str, title: &str, bodies: &[BodyGrid], steps: &[S
                 &b.name,
                 b.vis_cells,
                 &topology(b),
-                &pts,
+                &(pts, 8),
                 b,
                 "      ",
             );
@@ -174,7 +178,7 @@ pub(crate) fn render_step(h5_name: &str, bodies: &[BodyGrid], inc: &IncrementRec
     for (b, (plastic, patches)) in bodies.iter().zip(&inc.bodies) {
         let base = format!("/time/{}/{}", inc.k, b.name);
         let ind = "        ";
-        let points = format!("{base}/points");
+        let points = (format!("{base}/points"), inc.precision.bytes());
         grid_open(
             &mut x,
             &h5,
@@ -197,7 +201,7 @@ pub(crate) fn render_step(h5_name: &str, bodies: &[BodyGrid], inc: &IncrementRec
             "block" => format!("{mesh}/block"),
             f => format!("{cells}/{f}"),
         };
-        attributes(&mut x, &h5, b.vis_cells, any_plastic, source);
+        attributes(&mut x, &h5, b.vis_cells, any_plastic, inc, source);
         let _ = writeln!(x, "{ind}</Grid>");
         for &p in patches {
             let pg = &b.patches[p];
@@ -217,7 +221,7 @@ pub(crate) fn render_step(h5_name: &str, bodies: &[BodyGrid], inc: &IncrementRec
                 "block" => format!("{mesh}/block"),
                 f => format!("{faces}/{f}"),
             };
-            attributes(&mut x, &h5, pg.n_faces, any_plastic, source);
+            attributes(&mut x, &h5, pg.n_faces, any_plastic, inc, source);
             let _ = writeln!(x, "{ind}</Grid>");
         }
     }
@@ -230,7 +234,8 @@ fn topology(b: &BodyGrid) -> (String, usize) {
     (format!("/mesh/{}/xdmf/topology", b.name), b.topo_len)
 }
 
-/// Opens a uniform grid: its mixed topology and the body's points.
+/// Opens a uniform grid: its mixed topology and the body's points (the
+/// dataset and its bytes per value).
 #[allow(clippy::too_many_arguments)]
 fn grid_open(
     x: &mut String,
@@ -238,7 +243,7 @@ fn grid_open(
     name: &str,
     n_cells: usize,
     (topo, topo_len): &(String, usize),
-    points: &str,
+    (points, bytes): &(String, usize),
     b: &BodyGrid,
     ind: &str,
 ) {
@@ -247,7 +252,7 @@ fn grid_open(
         x,
         "{ind}  <Topology TopologyType=\"Mixed\" NumberOfElements=\"{n_cells}\">"
     );
-    data_item(x, h5, topo, &[*topo_len], "Int", &format!("{ind}    "));
+    data_item(x, h5, topo, &[*topo_len], ("Int", 8), &format!("{ind}    "));
     let _ = writeln!(x, "{ind}  </Topology>");
     let _ = writeln!(x, "{ind}  <Geometry GeometryType=\"XYZ\">");
     data_item(
@@ -255,18 +260,21 @@ fn grid_open(
         h5,
         points,
         &[b.n_points, 3],
-        "Float",
+        ("Float", *bytes),
         &format!("{ind}    "),
     );
     let _ = writeln!(x, "{ind}  </Geometry>");
 }
 
-/// The attributes of [`FIELDS`], each from the dataset `source(name)`.
+/// The attributes of [`FIELDS`], each from the dataset `source(name)`:
+/// in the increment's precision under `/time`, double under `/mesh` (the
+/// constants).
 fn attributes(
     x: &mut String,
     h5: &str,
     n_cells: usize,
     plastic: bool,
+    inc: &IncrementRecord,
     source: impl Fn(&str) -> String,
 ) {
     let ind = "          ";
@@ -284,16 +292,30 @@ fn attributes(
             x,
             "{ind}<Attribute Name=\"{name}\" AttributeType=\"{kind}\" Center=\"{center}\">"
         );
-        data_item(x, h5, &source(name), &dims, number, &format!("{ind}  "));
+        let path = source(name);
+        let bytes = if path.starts_with("/time/") {
+            inc.precision.bytes()
+        } else {
+            8
+        };
+        data_item(x, h5, &path, &dims, (number, bytes), &format!("{ind}  "));
         let _ = writeln!(x, "{ind}</Attribute>");
     }
 }
 
-fn data_item(x: &mut String, h5: &str, path: &str, dims: &[usize], number: &str, ind: &str) {
+/// A DataItem of `path`: its number type and bytes per value.
+fn data_item(
+    x: &mut String,
+    h5: &str,
+    path: &str,
+    dims: &[usize],
+    (number, bytes): (&str, usize),
+    ind: &str,
+) {
     let dims: Vec<String> = dims.iter().map(|d| d.to_string()).collect();
     let _ = writeln!(
         x,
-        "{ind}<DataItem Dimensions=\"{}\" NumberType=\"{number}\" Precision=\"8\" Format=\"HDF\">{h5}:{}</DataItem>",
+        "{ind}<DataItem Dimensions=\"{}\" NumberType=\"{number}\" Precision=\"{bytes}\" Format=\"HDF\">{h5}:{}</DataItem>",
         dims.join(" "),
         esc(path)
     );

@@ -17,7 +17,7 @@ use std::process::{Command, Stdio};
 use hdf5::types::VarLenUnicode;
 use output::{
     von_mises, vtk, BodyIncrement, CellMeshData, OutputError, PatchFaces, PatchIncrement,
-    ResultsWriter,
+    Precision, ResultsWriter,
 };
 
 // ---------------------------------------------------------------- fixtures
@@ -205,7 +205,17 @@ const HISTORY_COLUMNS: [&str; 4] = ["time", "outer_iterations", "residual", "blo
 
 /// Writes increments `1..=n` of the two-body example.
 fn write_two_body(w: &mut ResultsWriter, hex: &CellMeshData, tet: &CellMeshData, n: usize) {
-    for k in 1..=n {
+    write_increments(w, hex, tet, 1..=n);
+}
+
+/// Writes increments `ks` of the two-body example.
+fn write_increments(
+    w: &mut ResultsWriter,
+    hex: &CellMeshData,
+    tet: &CellMeshData,
+    ks: std::ops::RangeInclusive<usize>,
+) {
+    for k in ks {
         let fh = fields(hex, 2, k, 0.0);
         let ft = fields(tet, 2, k, 10.0);
         let bodies = [
@@ -487,6 +497,9 @@ fn check_xdmf(xdmf: &Path, h5: &hdf5::File, n_steps: usize) -> Vec<Element> {
             .map(|d| d.parse().unwrap())
             .collect();
         assert_eq!(ds.shape(), dims, "{path}");
+        // the bytes per value the dataset has (fields in single or double)
+        let bytes: usize = e.attr("Precision").unwrap().parse().unwrap();
+        assert_eq!(ds.dtype().unwrap().size(), bytes, "{path}");
         n_items += 1;
     }
     assert!(n_items > 0);
@@ -1048,6 +1061,61 @@ fn forgotten_writer_leaves_written_increments_on_disk() {
     let xdmf_copy = dir.join("copy.xdmf");
     std::fs::write(&xdmf_copy, text).unwrap();
     check_xdmf(&xdmf_copy, &f, 3);
+}
+
+/// `[output] precision = "single"`: the fields are the values rounded to
+/// the nearest `f32`, the reference mesh stays double, and the XDMF gives
+/// each increment's precision, also after the file is reopened to go on
+/// in double from increment 1.
+#[test]
+fn single_precision_fields_are_the_values_rounded() {
+    let (dir, _tmp) = out_dir("single");
+    let (hex, tet) = (hex_body(), tet_body());
+    let bodies = [("block", &hex), ("tets", &tet)];
+    let mut w = ResultsWriter::create(&dir, "single", &bodies).unwrap();
+    w.set_precision(Precision::Single);
+    write_two_body(&mut w, &hex, &tet, 2);
+    w.close().unwrap();
+    let mut w = ResultsWriter::reopen(&dir, "single", &bodies, 1).unwrap();
+    write_increments(&mut w, &hex, &tet, 2..=2);
+    w.close().unwrap();
+    let f = hdf5::File::open(dir.join("single.h5")).unwrap();
+    let bytes = |p: &str| f.dataset(p).unwrap().dtype().unwrap().size();
+    let rounded = |v: &[f64]| -> Vec<f64> { v.iter().map(|&x| x as f32 as f64).collect() };
+    let fx = fields(&hex, 2, 1, 0.0);
+    for (path, expected) in [
+        ("time/1/block/points", fx.points.as_flattened()),
+        ("time/1/block/stress", fx.stress.as_flattened()),
+        ("time/1/block/top/gap", &fx.gap),
+        (
+            "time/1/block/top/xdmf/displacement",
+            &[fx.displacement[1], fx.displacement[0]].concat(),
+        ),
+    ] {
+        assert_eq!(bytes(path), 4, "{path}");
+        assert_eq!(read_f64(&f, path).1, rounded(expected), "{path}");
+    }
+    // (the points are values such as 1.001, which no f32 is)
+    assert_ne!(
+        read_f64(&f, "time/1/block/points").1,
+        fx.points.as_flattened()
+    );
+    let vm: Vec<f64> = fx.stress.iter().map(von_mises).collect();
+    assert_eq!(read_f64(&f, "time/1/block/von_mises").1, rounded(&vm));
+    assert_eq!(bytes("mesh/block/points"), 8);
+    // increment 2, written after the reopen: double, every value as given
+    assert_eq!(bytes("time/2/block/stress"), 8);
+    check_increment(&f, &hex, &tet, 2);
+    let els = check_xdmf(&dir.join("single.xdmf"), &f, 2);
+    let precision = |item: &str| {
+        let e = els
+            .iter()
+            .find(|e| e.text.trim() == format!("single.h5:{item}"));
+        e.and_then(|e| e.attr("Precision")).unwrap().to_string()
+    };
+    assert_eq!(precision("/time/1/tets/points"), "4");
+    assert_eq!(precision("/mesh/tets/xdmf/zero"), "8");
+    assert_eq!(precision("/time/2/tets/points"), "8");
 }
 
 /// Child side of [`sigkill_after_k_increments_leaves_k_readable`]: writes

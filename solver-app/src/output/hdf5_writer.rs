@@ -72,9 +72,10 @@ pub(super) fn access(
 /// /mesh/<body>/xdmf/topology          + XDMF Mixed array (i64); attr n_cells = cells shown
 /// /mesh/<body>/xdmf/cell_map          + mesh cell of every shown cell (only with type 42)
 /// /mesh/<body>/xdmf/{block,zero}     + per shown cell: the body's `block` number, 0
+/// /mesh/<body>/xdmf/zero_single       + 0 in single precision, once an increment is written so
 /// /mesh/<body>/patches/<patch>/{offsets,connectivity,xdmf_topology}  + patch faces over body points
 /// /mesh/<body>/patches/<patch>/cells  + the mesh cell each face bounds
-/// /mesh/<body>/patches/<patch>/{block,zero}  + per face: the patch's `block` number, 0
+/// /mesh/<body>/patches/<patch>/{block,zero,zero_single}  + per face: the patch's `block` number, 0
 /// /time/<k>                           attrs: time (f64), outer_iterations (u64), residual (f64), converged (bool)
 /// /time/<k>/<body>/points             (n_points×3, current)
 /// /time/<k>/<body>/displacement       (n_cells×3)
@@ -92,7 +93,8 @@ pub(super) fn access(
 /// ```
 /// The index lets a reader take the increments in order without sorting
 /// the group names (which sort as strings: 1, 10, 100, 11, …). Field
-/// datasets are chunked and compressed (shuffle + deflate) and carry the
+/// datasets are chunked and compressed (shuffle + deflate; at most 512 B:
+/// compact), double or single ([`ResultsWriter::set_precision`]), and carry the
 /// attributes `units` (in the case's consistent units: `length`,
 /// `force/length^2`, `1`), `location` (`cell`, `point`, `face`) and, with
 /// several columns, `components` (`x y z`; stress `xx yy zz xy yz xz`).
@@ -608,6 +610,7 @@ impl ResultsWriter {
             put_field(l, g, gp, name, v, shape, at, pr)
         };
         let state = &self.bodies[bi];
+        self.write_zeros(l, state, &indices)?;
         let (np, nc) = (state.grid.n_points, state.n_cells);
         let bp = format!("{tp}/{}", b.name);
         let bg = group(l, tg, tp, b.name)?;
@@ -671,6 +674,32 @@ impl ResultsWriter {
             }
         }
         Ok(indices)
+    }
+
+    /// Writes the constant 0 of the XDMF's `plastic_strain` of an elastic
+    /// body in the writer's precision, if not yet there, under
+    /// `/mesh/<body>/xdmf` and the patches `indices`.
+    fn write_zeros(
+        &self,
+        l: &str,
+        state: &BodyState,
+        indices: &[usize],
+    ) -> Result<(), OutputError> {
+        let name = xdmf_document::zero(self.precision);
+        let bp = format!("/mesh/{}", state.grid.name);
+        let mut places = vec![(format!("{bp}/xdmf"), state.grid.vis_cells)];
+        for &i in indices {
+            let p = &state.grid.patches[i];
+            places.push((format!("{bp}/patches/{}", p.name), p.n_faces));
+        }
+        for (gp, n) in places {
+            let g = self.file.group(&gp).at(|| format!("{l}:{gp}"))?;
+            if !g.link_exists(name) {
+                let zeros = vec![0.0; n];
+                put_field(l, &g, &gp, name, &zeros, &[n], None, self.precision)?;
+            }
+        }
+        Ok(())
     }
 
     /// Writes `/time/<k>/<body>/xdmf/`, one value per cell ParaView shows:

@@ -196,7 +196,7 @@ pub(crate) fn render_step(h5_name: &str, bodies: &[BodyGrid], inc: &IncrementRec
         };
         let mesh = format!("/mesh/{}/xdmf", b.name);
         let source = |field: &str| match field {
-            "plastic_strain" if !plastic => format!("{mesh}/zero"),
+            "plastic_strain" if !plastic => format!("{mesh}/{}", zero(inc.precision)),
             "contact_pressure" | "contact_traction" | "gap" => format!("{base}/xdmf/{field}"),
             "block" => format!("{mesh}/block"),
             f => format!("{cells}/{f}"),
@@ -214,7 +214,7 @@ pub(crate) fn render_step(h5_name: &str, bodies: &[BodyGrid], inc: &IncrementRec
             grid_open(&mut x, &h5, &name, pg.n_faces, &topo, &points, b, ind);
             let faces = format!("{base}/{}", pg.name);
             let source = |field: &str| match field {
-                "plastic_strain" if !plastic => format!("{mesh}/zero"),
+                "plastic_strain" if !plastic => format!("{mesh}/{}", zero(inc.precision)),
                 "displacement" | "stress" | "von_mises" | "plastic_strain" => {
                     format!("{faces}/xdmf/{field}")
                 }
@@ -227,6 +227,16 @@ pub(crate) fn render_step(h5_name: &str, bodies: &[BodyGrid], inc: &IncrementRec
     }
     x.push_str("      </Grid>\n");
     x
+}
+
+/// The name of the constant 0 (per shown cell or patch face, under
+/// `/mesh`) of a field in `precision`: an array that MergeBlocks appends
+/// to one of another type is dropped.
+pub(crate) fn zero(precision: Precision) -> &'static str {
+    match precision {
+        Precision::Double => "zero",
+        Precision::Single => "zero_single",
+    }
 }
 
 /// The body's topology dataset and its length.
@@ -267,8 +277,8 @@ fn grid_open(
 }
 
 /// The attributes of [`FIELDS`], each from the dataset `source(name)`:
-/// in the increment's precision under `/time`, double under `/mesh` (the
-/// constants).
+/// `block` 8-byte integers, the others floats in the increment's
+/// precision.
 fn attributes(
     x: &mut String,
     h5: &str,
@@ -292,13 +302,13 @@ fn attributes(
             x,
             "{ind}<Attribute Name=\"{name}\" AttributeType=\"{kind}\" Center=\"{center}\">"
         );
-        let path = source(name);
-        let bytes = if path.starts_with("/time/") {
-            inc.precision.bytes()
-        } else {
+        let bytes = if name == "block" {
             8
+        } else {
+            inc.precision.bytes()
         };
-        data_item(x, h5, &path, &dims, (number, bytes), &format!("{ind}  "));
+        let item = (number, bytes);
+        data_item(x, h5, &source(name), &dims, item, &format!("{ind}  "));
         let _ = writeln!(x, "{ind}</Attribute>");
     }
 }

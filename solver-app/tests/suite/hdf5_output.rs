@@ -1114,6 +1114,9 @@ fn single_precision_fields_are_the_values_rounded() {
         e.and_then(|e| e.attr("Precision")).unwrap().to_string()
     };
     assert_eq!(precision("/time/1/tets/points"), "4");
+    // the elastic body's plastic_strain: a 0 of the increment's precision
+    assert_eq!(precision("/mesh/tets/xdmf/zero_single"), "4");
+    assert_eq!(precision("/mesh/tets/patches/bottom/zero_single"), "4");
     assert_eq!(precision("/mesh/tets/xdmf/zero"), "8");
     assert_eq!(precision("/time/2/tets/points"), "8");
 }

@@ -9,7 +9,9 @@
 //! ([`crate::background_writer`]), while the solver goes on. Shallow
 //! ironing, first 30 increments (3,672 cells): 21.2 MB uncompressed;
 //! 6.35 MB compressed, 5.2 MB with the writer's smaller chunk B-tree
-//! nodes (`ISTORE_K`); the run as fast as uncompressed.
+//! nodes (`ISTORE_K`); the run as fast as uncompressed. Fields may be
+//! stored in single precision ([`create_field`], `[output] precision`):
+//! the full run (600 increments) 226 MB in double, 131 MB in single.
 use std::sync::OnceLock;
 
 use hdf5::plist::dataset_create::Layout;

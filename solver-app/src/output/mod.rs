@@ -42,12 +42,12 @@ pub use hdf5_writer::ResultsWriter;
 pub use restart_file::{read_restart_index, read_restart_state, RestartIndex};
 
 /// How the field datasets of an increment store their values (`[output]
-/// precision`, issue 45). The mesh, the history, the index and the
-/// restart states are double whatever it says.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+/// precision`, issue 45; a case's default is single, [`ResultsWriter`]'s
+/// double). The mesh, the history, the index and the restart states are
+/// double whatever it says.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Precision {
     /// 8-byte floats: the values as the solver computed them.
-    #[default]
     Double,
     /// 4-byte floats, rounded to nearest (relative rounding at most
     /// 6e-8, 2⁻²⁴): half the bytes, and about half the compressed size

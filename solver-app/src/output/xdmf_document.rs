@@ -20,8 +20,8 @@
 //! Grids reference the body's *current* points (`/time/<k>/<body>/points`),
 //! so ParaView shows the deformed shape without any filter; the document
 //! says so in an `Information` element. There is no point displacement
-//! field (issue 45: it was the largest field after the stress, and the
-//! vector a "Warp By Vector" would have applied a second time); a point's
+//! field (issue 45: it took 14 % of the shallow-ironing results, and it
+//! was the vector a "Warp By Vector" would have applied twice); a point's
 //! displacement is `/time/<k>/<body>/points − /mesh/<body>/points`.
 use std::fmt::Write;
 

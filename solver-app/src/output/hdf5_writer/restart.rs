@@ -9,7 +9,8 @@
 //! not repeated there when the fields are double: it is
 //! `/time/<k>/<body>/displacement`; with single-precision fields it is.
 //! Written next to `/time/<k>` for every increment whose fields are
-//! written, compressed like the fields, always double. [`ResultsWriter::reopen`] opens a
+//! written, compressed like the fields, always double.
+//! [`ResultsWriter::reopen`] opens a
 //! file to continue it after increment K: what the file holds beyond K
 //! (fields, restart states, index entries, history rows) is removed and
 //! the XDMF lists increments 1..=K again.

@@ -44,8 +44,6 @@ pub struct OwnedBody {
     pub stress: Vec<[f64; 6]>,
     /// Equivalent plastic strain (plastic models).
     pub plastic_strain: Option<Vec<f64>>,
-    /// Point displacement.
-    pub point_displacement: Vec<[f64; 3]>,
     /// Contact patches.
     pub patches: Vec<OwnedPatch>,
 }
@@ -189,7 +187,6 @@ fn write_increment(writer: &mut ResultsWriter, inc: &OwnedIncrement) -> Result<(
             displacement: &b.displacement,
             stress: &b.stress,
             plastic_strain: b.plastic_strain.as_deref(),
-            point_displacement: &b.point_displacement,
             patches: b
                 .patches
                 .iter()
@@ -241,7 +238,6 @@ mod tests {
                 displacement: vec![[0.0, -1e-3 * k as f64, 0.0]],
                 stress: vec![[0.0, -2.0 * k as f64, 0.0, 0.0, 0.0, 0.0]],
                 plastic_strain: None,
-                point_displacement: vec![[0.0; 3]; 4],
                 patches: vec![OwnedPatch {
                     name: "bottom".to_owned(),
                     offsets: vec![0, 3],

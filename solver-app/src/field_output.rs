@@ -1,6 +1,6 @@
 //! Adapts the solver's bodies and contacts to the HDF5/XDMF writer
 //! ([`crate::output`]): cell connectivity once, then per written increment
-//! the cell fields, point displacement (cell-to-point least squares) and the
+//! the cell fields, current points (cell-to-point least squares) and the
 //! contact fields of every contact patch, copied out and handed to the
 //! writer's thread ([`crate::background_writer`]).
 use std::path::Path;
@@ -8,7 +8,7 @@ use std::path::Path;
 use crate::background_writer::{BackgroundWriter, OwnedBody, OwnedIncrement, OwnedPatch};
 use crate::contact_coupling::ContactSet;
 use crate::model::Body;
-use crate::output::{CellMeshData, OutputError, ResultsWriter};
+use crate::output::{CellMeshData, OutputError, Precision, ResultsWriter};
 use fv_mesh::{CellToPoint, Vector};
 
 /// Per-body fields of one written increment, allocated for the write only
@@ -16,7 +16,6 @@ use fv_mesh::{CellToPoint, Vector};
 #[derive(Default)]
 struct BodyBuffers {
     points: Vec<[f64; 3]>,
-    point_displacement: Vec<[f64; 3]>,
     displacement: Vec<[f64; 3]>,
     stress: Vec<[f64; 6]>,
 }
@@ -55,14 +54,15 @@ fn mesh_data(b: &Body) -> Result<CellMeshData, OutputError> {
 impl FieldOutput {
     /// Creates `<dir>/<title>.h5` and `.xdmf` with the meshes of all
     /// bodies and the lines of the case its restart states fit
-    /// ([`crate::restart::case_signature`]).
+    /// ([`crate::restart::case_signature`]); fields in `precision`.
     pub fn create(
         dir: &Path,
         title: &str,
         bodies: &[Body],
         signature: &[String],
+        precision: Precision,
     ) -> Result<Self, OutputError> {
-        Self::open(dir, title, bodies, signature, None)
+        Self::open(dir, title, bodies, signature, None, precision)
     }
 
     /// Opens the results of an earlier run of the case to continue them
@@ -74,8 +74,9 @@ impl FieldOutput {
         bodies: &[Body],
         signature: &[String],
         keep: usize,
+        precision: Precision,
     ) -> Result<Self, OutputError> {
-        Self::open(dir, title, bodies, signature, Some(keep))
+        Self::open(dir, title, bodies, signature, Some(keep), precision)
     }
 
     fn open(
@@ -84,6 +85,7 @@ impl FieldOutput {
         bodies: &[Body],
         signature: &[String],
         keep: Option<usize>,
+        precision: Precision,
     ) -> Result<Self, OutputError> {
         let data: Vec<CellMeshData> = bodies.iter().map(mesh_data).collect::<Result<_, _>>()?;
         let named: Vec<(&str, &CellMeshData)> = bodies
@@ -96,6 +98,7 @@ impl FieldOutput {
             Some(k) => ResultsWriter::reopen(dir, title, &named, k)?,
         };
         w.write_case_signature(signature)?;
+        w.set_precision(precision);
         let writer = BackgroundWriter::start(w)?;
         Ok(FieldOutput { writer })
     }
@@ -127,7 +130,6 @@ impl FieldOutput {
         for (b, buf) in bodies.iter().zip(buffers.iter_mut()) {
             let np = b.mesh.n_points();
             buf.points.resize(np, [0.0; 3]);
-            buf.point_displacement.resize(np, [0.0; 3]);
             let initial = b.initial_points();
             if !b.rigid {
                 // current points: the mesh (initial, or the start of the
@@ -144,26 +146,17 @@ impl FieldOutput {
                 if let Some(w) = &b.wedge_points {
                     w.apply_all(&mut point_u);
                 }
-                for ((x, pd), ((u, xm), x0)) in buf
+                for (x, (u, xm)) in buf
                     .points
                     .iter_mut()
-                    .zip(&mut buf.point_displacement)
-                    .zip(point_u.iter().zip(&b.mesh.points).zip(initial))
+                    .zip(point_u.iter().zip(&b.mesh.points))
                 {
                     let xc = xm + u;
-                    let d = xc - x0;
-                    *pd = [d.x, d.y, d.z];
                     *x = [xc.x, xc.y, xc.z];
                 }
             } else {
-                for ((x, pd), x0) in buf
-                    .points
-                    .iter_mut()
-                    .zip(buf.point_displacement.iter_mut())
-                    .zip(initial)
-                {
+                for (x, x0) in buf.points.iter_mut().zip(initial) {
                     let u = b.rigid_displacement(x0);
-                    *pd = [u.x, u.y, u.z];
                     *x = [x0.x + u.x, x0.y + u.y, x0.z + u.z];
                 }
             }
@@ -273,7 +266,6 @@ impl FieldOutput {
                 displacement: buf.displacement,
                 stress: buf.stress,
                 plastic_strain: b.momentum.law.plastic_strain().map(<[f64]>::to_vec),
-                point_displacement: buf.point_displacement,
                 patches: patches.into_iter().map(|p| owned_patch(b, p)).collect(),
             })
             .collect();

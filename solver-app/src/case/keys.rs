@@ -140,7 +140,7 @@ pub const CONTACT_RELAXATION: &[&str] = &["normal", "tangential"];
 pub const AUGMENTATION: &[&str] = &["penetration", "max_updates"];
 
 /// `[output]`.
-pub const OUTPUT: &[&str] = &["directory", "every", "restart_every"];
+pub const OUTPUT: &[&str] = &["directory", "every", "restart_every", "precision"];
 
 /// The keys one table of the case file accepts.
 #[derive(Debug, Clone, Copy)]
@@ -253,6 +253,7 @@ pub fn accepted_names() -> Vec<AcceptedNames> {
         n("contact", "detection", names(&contact::DETECTIONS)),
         n("contact", "slip_history", names(&contact::SLIP_HISTORIES)),
         n("contact", "face_position", names(&contact::FACE_POSITIONS)),
+        n("output", "precision", names(&settings::PRECISIONS)),
     ]
 }
 

@@ -2,6 +2,8 @@
 
 use fv_discretise::RhieChowHistory;
 use fv_nonlinear::NonlinearMethod;
+
+use crate::output::Precision;
 use std::path::PathBuf;
 
 use super::keys;
@@ -331,7 +333,14 @@ pub struct OutputSettings {
     /// this (of those whose fields are written), and of the last one
     /// written (>= 1, default [`RESTART_EVERY`]).
     pub restart_every: usize,
+    /// How the fields are stored (`"single"`, default, or `"double"`;
+    /// restart states are double either way).
+    pub precision: Precision,
 }
+
+/// `output.precision` by name.
+pub(crate) const PRECISIONS: [(&str, Precision); 2] =
+    [("double", Precision::Double), ("single", Precision::Single)];
 
 /// Default `[output] restart_every`: a state is about the size of the
 /// fields of an increment, so keeping every tenth (and the last) adds
@@ -344,6 +353,9 @@ impl Default for OutputSettings {
             directory: PathBuf::from("results"),
             every: 1,
             restart_every: RESTART_EVERY,
+            // half the results: shallow ironing (600 increments) 226 MB
+            // in double, 131 MB (docs/solver-notes.md, "Results files")
+            precision: Precision::Single,
         }
     }
 }
@@ -689,5 +701,8 @@ pub(crate) fn output(t: &Table<'_>) -> Res<OutputSettings> {
         })?,
         every: t.opt("every", d.every, |n| n.usize_min(1))?,
         restart_every: t.opt("restart_every", d.restart_every, |n| n.usize_min(1))?,
+        precision: t.opt("precision", d.precision, |n| {
+            n.choice("output precision", &PRECISIONS)
+        })?,
     })
 }

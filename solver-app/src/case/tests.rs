@@ -94,6 +94,7 @@ fn defaults() {
     assert_eq!(c.output.directory, PathBuf::from("results"));
     assert_eq!(c.output.every, 1);
     assert_eq!(c.output.restart_every, 10);
+    assert_eq!(c.output.precision, crate::output::Precision::Single);
     assert!(c.contacts.is_empty());
     assert_eq!(c.bodies.len(), 1);
     let b = &c.bodies[0];
@@ -161,6 +162,7 @@ material = { model = "linear-elastic", E = 1, nu = 0, rho = 7800 }
 directory = "out/dir"
 every = 5
 restart_every = 20
+precision = "double"
 "#;
     let c = parse(text);
     assert_eq!(c.analysis.kind, AnalysisKind::Dynamic);
@@ -197,6 +199,10 @@ restart_every = 20
     assert_eq!(c.output.directory, PathBuf::from("out/dir"));
     assert_eq!(c.output.every, 5);
     assert_eq!(c.output.restart_every, 20);
+    assert_eq!(c.output.precision, crate::output::Precision::Double);
+    let e = fail(&text.replace("precision = \"double\"", "precision = \"half\""));
+    assert_eq!(e.key.as_deref(), Some("output.precision"));
+    assert!(e.message.contains("\"double\", \"single\""), "{e}");
     assert_eq!(c.source.line_of("solver.linear.method"), Some(21));
     let e = fail(&text.replace("\"accumulated\"", "\"total\""));
     assert_eq!(e.key.as_deref(), Some("solver.rhie_chow_history"));

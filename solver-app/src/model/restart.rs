@@ -45,12 +45,12 @@ impl Body {
         if self.mesh_motion.is_some() {
             out.put_vectors(format!("{p}/points"), &self.mesh.points);
         }
+        // the cell displacement `momentum/u` is the increment's
+        // `displacement` field: the results writer leaves it out where
+        // that field is stored in double precision
+        // (`crate::output::ResultsWriter::write_restart`)
         self.momentum
             .save_state(&self.mesh, &format!("{p}/momentum"), out);
-        // the cell displacement is the increment's `displacement` field,
-        // which the results hold already (`crate::output::read_restart_state`
-        // puts it back)
-        out.take(&format!("{p}/momentum/u"));
         for fc in &self.force_controls {
             let name = &self.mesh.patches[fc.patch].name;
             out.put_scalars(format!("{p}/force_control/{name}"), &save_force_control(fc));

@@ -23,7 +23,7 @@ use super::xdmf;
 use super::xdmf_document::{self, BodyGrid, IncrementRecord, PatchGrid};
 
 mod restart;
-use super::{von_mises, BodyIncrement, CellMeshData, OutputError, PatchIncrement};
+use super::{von_mises, BodyIncrement, CellMeshData, OutputError, PatchIncrement, Precision};
 
 /// Names a patch may not take: they are datasets or groups of
 /// `/time/<k>/<body>/`.
@@ -33,7 +33,6 @@ const RESERVED: &[&str] = &[
     "stress",
     "von_mises",
     "plastic_strain",
-    "point_displacement",
     "xdmf",
 ];
 
@@ -47,6 +46,21 @@ const ISTORE_K: u32 = 4;
 /// Chunk length of the growing `/increments` and `/times` index.
 const INDEX_CHUNK: usize = 256;
 
+/// How the writer opens the file: HDF5 file locking off (ParaView or h5py
+/// may read while a run goes on), and objects in the file format of HDF5
+/// 1.8: a group keeps its few links in its own header instead of a
+/// B-tree and a heap of its own (shallow ironing, 600 increments: 8 MB
+/// less, 6 % of the file). The superblock stays one without the "open for
+/// writing" flag of the 1.10 format (superblock 3), which a crash would
+/// leave set and make readers refuse the file until `h5clear`; every
+/// reader since HDF5 1.8 (2008) reads the file.
+pub(super) fn access(
+    p: &mut hdf5::plist::FileAccessBuilder,
+) -> &mut hdf5::plist::FileAccessBuilder {
+    use hdf5::plist::file_access::LibraryVersion::V18;
+    p.file_locking(false).libver_bounds(V18, V18)
+}
+
 /// Writes `<dir>/<title>.h5` and `<dir>/<title>.xdmf`.
 ///
 /// Layout (CASE_FORMAT.md, plus the extensions marked +):
@@ -58,16 +72,16 @@ const INDEX_CHUNK: usize = 256;
 /// /mesh/<body>/xdmf/topology          + XDMF Mixed array (i64); attr n_cells = cells shown
 /// /mesh/<body>/xdmf/cell_map          + mesh cell of every shown cell (only with type 42)
 /// /mesh/<body>/xdmf/{block,zero}     + per shown cell: the body's `block` number, 0
+/// /mesh/<body>/xdmf/zero_single       + 0 in single precision, once an increment is written so
 /// /mesh/<body>/patches/<patch>/{offsets,connectivity,xdmf_topology}  + patch faces over body points
 /// /mesh/<body>/patches/<patch>/cells  + the mesh cell each face bounds
-/// /mesh/<body>/patches/<patch>/{block,zero}  + per face: the patch's `block` number, 0
+/// /mesh/<body>/patches/<patch>/{block,zero,zero_single}  + per face: the patch's `block` number, 0
 /// /time/<k>                           attrs: time (f64), outer_iterations (u64), residual (f64), converged (bool)
 /// /time/<k>/<body>/points             (n_points×3, current)
 /// /time/<k>/<body>/displacement       (n_cells×3)
 /// /time/<k>/<body>/stress             (n_cells×6: xx,yy,zz,xy,yz,xz)
 /// /time/<k>/<body>/von_mises          + (n_cells)
 /// /time/<k>/<body>/plastic_strain     (n_cells; when given)
-/// /time/<k>/<body>/point_displacement + (n_points×3)
 /// /time/<k>/<body>/xdmf/…             + per shown cell: contact_pressure, contact_traction, gap of the
 ///                                     patch face the cell bounds (0, 0, NaN for none); with type 42 the
 ///                                     cell fields repeated per shown cell
@@ -79,7 +93,8 @@ const INDEX_CHUNK: usize = 256;
 /// ```
 /// The index lets a reader take the increments in order without sorting
 /// the group names (which sort as strings: 1, 10, 100, 11, …). Field
-/// datasets are chunked and compressed (shuffle + deflate) and carry the
+/// datasets are chunked and compressed (shuffle + deflate; at most 512 B:
+/// compact), double or single ([`ResultsWriter::set_precision`]), and carry the
 /// attributes `units` (in the case's consistent units: `length`,
 /// `force/length^2`, `1`), `location` (`cell`, `point`, `face`) and, with
 /// several columns, `components` (`x y z`; stress `xx yy zz xy yz xz`).
@@ -101,6 +116,8 @@ pub struct ResultsWriter {
     index: (Dataset, Dataset),
     /// Grids numbered so far (the XDMF's `block` field).
     n_blocks: usize,
+    /// How the fields of the increments written next are stored.
+    precision: Precision,
 }
 
 struct BodyState {
@@ -158,19 +175,22 @@ fn put<T: H5Type>(
     Ok(())
 }
 
-/// [`put`] with the attribute `location` given ([`super::datasets::create_at`]).
-fn put_at<T: H5Type>(
+/// [`put`] for a field's values, stored in `precision`, with the
+/// attribute `location` given ([`super::datasets::create_field`]).
+#[allow(clippy::too_many_arguments)]
+fn put_field(
     label: &str,
     g: &Group,
     gpath: &str,
     name: &str,
-    data: &[T],
+    data: &[f64],
     shape: &[usize],
     location: Option<&'static str>,
+    precision: Precision,
 ) -> Result<(), OutputError> {
     let at = || format!("{label}:{gpath}/{name}");
     debug_assert_eq!(shape.iter().product::<usize>(), data.len());
-    super::datasets::create_at(g, name, data, shape, location).at(at)?;
+    super::datasets::create_field(g, name, data, shape, location, precision).at(at)?;
     Ok(())
 }
 
@@ -296,7 +316,7 @@ impl ResultsWriter {
         let xdmf_path = dir.join(format!("{title}.xdmf"));
         let label = h5_path.display().to_string();
         let file = File::with_options()
-            .with_fapl(|p| p.file_locking(false))
+            .with_fapl(access)
             // a chunk B-tree node of 2 × 4 entries, not 2 × 32: most
             // datasets have one or a few chunks, and a node of 32 took
             // 2.6 kB each (shallow ironing, 30 increments: 6.26 → 5.09 MB)
@@ -399,9 +419,17 @@ impl ResultsWriter {
             history: None,
             index: (increments, times),
             n_blocks: bodies.len(),
+            precision: Precision::Double,
         };
         w.write_xdmf()?;
         Ok(w)
+    }
+
+    /// Stores the fields of the increments written from now on in
+    /// `precision` (the writer starts with [`Precision::Double`]); the
+    /// XDMF gives each increment's own.
+    pub fn set_precision(&mut self, precision: Precision) {
+        self.precision = precision;
     }
 
     /// Path of the `.h5` file.
@@ -449,6 +477,7 @@ impl ResultsWriter {
             k,
             time,
             bodies: Vec::with_capacity(self.bodies.len()),
+            precision: self.precision,
         };
         for (bi, &ii) in order.iter().enumerate() {
             let inc = &bodies[ii];
@@ -521,7 +550,6 @@ impl ResultsWriter {
             let (np, nc) = (state.grid.n_points, state.n_cells);
             let w = |f: &str| format!("increment {k}, body '{}': {f}", b.name);
             check_len(&w("points"), b.points.len(), np)?;
-            check_len(&w("point_displacement"), b.point_displacement.len(), np)?;
             check_len(&w("displacement"), b.displacement.len(), nc)?;
             check_len(&w("stress"), b.stress.len(), nc)?;
             if let Some(ps) = b.plastic_strain {
@@ -577,79 +605,101 @@ impl ResultsWriter {
             .iter()
             .map(|p| self.patch_index(l, bi, p))
             .collect::<Result<Vec<_>, _>>()?;
+        let pr = self.precision;
+        let field = |g: &Group, gp: &str, name: &str, v: &[f64], shape: &[usize], at| {
+            put_field(l, g, gp, name, v, shape, at, pr)
+        };
         let state = &self.bodies[bi];
+        self.write_zeros(l, state, &indices)?;
         let (np, nc) = (state.grid.n_points, state.n_cells);
         let bp = format!("{tp}/{}", b.name);
         let bg = group(l, tg, tp, b.name)?;
         let vm: Vec<f64> = b.stress.iter().map(von_mises).collect();
-        put(l, &bg, &bp, "points", b.points.as_flattened(), &[np, 3])?;
-        put(
-            l,
+        field(&bg, &bp, "points", b.points.as_flattened(), &[np, 3], None)?;
+        field(
             &bg,
             &bp,
             "displacement",
             b.displacement.as_flattened(),
             &[nc, 3],
+            None,
         )?;
-        put(l, &bg, &bp, "stress", b.stress.as_flattened(), &[nc, 6])?;
-        put(l, &bg, &bp, "von_mises", &vm, &[nc])?;
+        field(&bg, &bp, "stress", b.stress.as_flattened(), &[nc, 6], None)?;
+        field(&bg, &bp, "von_mises", &vm, &[nc], None)?;
         if let Some(ps) = b.plastic_strain {
-            put(l, &bg, &bp, "plastic_strain", ps, &[nc])?;
+            field(&bg, &bp, "plastic_strain", ps, &[nc], None)?;
         }
-        put(
-            l,
-            &bg,
-            &bp,
-            "point_displacement",
-            b.point_displacement.as_flattened(),
-            &[np, 3],
-        )?;
         self.write_shown_cells(l, &bg, &bp, bi, b, &vm, &indices)?;
         for (p, &index) in b.patches.iter().zip(&indices) {
             let nf = p.faces.n_faces();
             let pp = format!("{bp}/{}", p.name);
             let pg = group(l, &bg, &bp, p.name)?;
-            put(
-                l,
+            field(
                 &pg,
                 &pp,
                 "face_centres",
                 p.face_centres.as_flattened(),
                 &[nf, 3],
+                None,
             )?;
-            put(l, &pg, &pp, "contact_pressure", p.contact_pressure, &[nf])?;
-            put(
-                l,
+            field(
+                &pg,
+                &pp,
+                "contact_pressure",
+                p.contact_pressure,
+                &[nf],
+                None,
+            )?;
+            field(
                 &pg,
                 &pp,
                 "contact_traction",
                 p.contact_traction.as_flattened(),
                 &[nf, 3],
+                None,
             )?;
-            put(l, &pg, &pp, "gap", p.gap, &[nf])?;
+            field(&pg, &pp, "gap", p.gap, &[nf], None)?;
             // for the XDMF: the fields of the cells under the faces
             let cells = &self.bodies[bi].face_cells[index];
             let xp = format!("{pp}/xdmf");
             let xg = group(l, &pg, &pp, "xdmf")?;
             let disp = expand(cells, b.displacement);
             let at = Some("face");
-            put_at(
-                l,
-                &xg,
-                &xp,
-                "displacement",
-                disp.as_flattened(),
-                &[nf, 3],
-                at,
-            )?;
+            field(&xg, &xp, "displacement", disp.as_flattened(), &[nf, 3], at)?;
             let stress = expand(cells, b.stress);
-            put_at(l, &xg, &xp, "stress", stress.as_flattened(), &[nf, 6], at)?;
-            put_at(l, &xg, &xp, "von_mises", &expand(cells, &vm), &[nf], at)?;
+            field(&xg, &xp, "stress", stress.as_flattened(), &[nf, 6], at)?;
+            field(&xg, &xp, "von_mises", &expand(cells, &vm), &[nf], at)?;
             if let Some(ps) = b.plastic_strain {
-                put_at(l, &xg, &xp, "plastic_strain", &expand(cells, ps), &[nf], at)?;
+                field(&xg, &xp, "plastic_strain", &expand(cells, ps), &[nf], at)?;
             }
         }
         Ok(indices)
+    }
+
+    /// Writes the constant 0 of the XDMF's `plastic_strain` of an elastic
+    /// body in the writer's precision, if not yet there, under
+    /// `/mesh/<body>/xdmf` and the patches `indices`.
+    fn write_zeros(
+        &self,
+        l: &str,
+        state: &BodyState,
+        indices: &[usize],
+    ) -> Result<(), OutputError> {
+        let name = xdmf_document::zero(self.precision);
+        let bp = format!("/mesh/{}", state.grid.name);
+        let mut places = vec![(format!("{bp}/xdmf"), state.grid.vis_cells)];
+        for &i in indices {
+            let p = &state.grid.patches[i];
+            places.push((format!("{bp}/patches/{}", p.name), p.n_faces));
+        }
+        for (gp, n) in places {
+            let g = self.file.group(&gp).at(|| format!("{l}:{gp}"))?;
+            if !g.link_exists(name) {
+                let zeros = vec![0.0; n];
+                put_field(l, &g, &gp, name, &zeros, &[n], None, self.precision)?;
+            }
+        }
+        Ok(())
     }
 
     /// Writes `/time/<k>/<body>/xdmf/`, one value per cell ParaView shows:
@@ -669,6 +719,10 @@ impl ResultsWriter {
         vm: &[f64],
         indices: &[usize],
     ) -> Result<(), OutputError> {
+        let pr = self.precision;
+        let field = |g: &Group, gp: &str, name: &str, v: &[f64], shape: &[usize], at| {
+            put_field(l, g, gp, name, v, shape, at, pr)
+        };
         let state = &self.bodies[bi];
         let nc = state.n_cells;
         let mut pressure = vec![0.0; nc];
@@ -687,33 +741,25 @@ impl ResultsWriter {
         let at = Some("cell");
         match &state.cell_map {
             None => {
-                put_at(l, &xg, &xp, "contact_pressure", &pressure, &[nc], at)?;
+                field(&xg, &xp, "contact_pressure", &pressure, &[nc], at)?;
                 let t = traction.as_flattened();
-                put_at(l, &xg, &xp, "contact_traction", t, &[nc, 3], at)?;
-                put_at(l, &xg, &xp, "gap", &gap, &[nc], at)?;
+                field(&xg, &xp, "contact_traction", t, &[nc, 3], at)?;
+                field(&xg, &xp, "gap", &gap, &[nc], at)?;
             }
             Some(map) => {
                 let n = map.len();
                 let p = expand(map, &pressure);
-                put_at(l, &xg, &xp, "contact_pressure", &p, &[n], at)?;
+                field(&xg, &xp, "contact_pressure", &p, &[n], at)?;
                 let t = expand(map, &traction);
-                put_at(
-                    l,
-                    &xg,
-                    &xp,
-                    "contact_traction",
-                    t.as_flattened(),
-                    &[n, 3],
-                    at,
-                )?;
-                put_at(l, &xg, &xp, "gap", &expand(map, &gap), &[n], at)?;
+                field(&xg, &xp, "contact_traction", t.as_flattened(), &[n, 3], at)?;
+                field(&xg, &xp, "gap", &expand(map, &gap), &[n], at)?;
                 let d = expand(map, b.displacement);
-                put(l, &xg, &xp, "displacement", d.as_flattened(), &[n, 3])?;
+                field(&xg, &xp, "displacement", d.as_flattened(), &[n, 3], None)?;
                 let s = expand(map, b.stress);
-                put(l, &xg, &xp, "stress", s.as_flattened(), &[n, 6])?;
-                put(l, &xg, &xp, "von_mises", &expand(map, vm), &[n])?;
+                field(&xg, &xp, "stress", s.as_flattened(), &[n, 6], None)?;
+                field(&xg, &xp, "von_mises", &expand(map, vm), &[n], None)?;
                 if let Some(ps) = b.plastic_strain {
-                    put(l, &xg, &xp, "plastic_strain", &expand(map, ps), &[n])?;
+                    field(&xg, &xp, "plastic_strain", &expand(map, ps), &[n], None)?;
                 }
             }
         }

@@ -18,7 +18,6 @@
 //!     displacement: &[[0.0; 3]],
 //!     stress: &[[0.0; 6]],
 //!     plastic_strain: None,
-//!     point_displacement: &[[0.0; 3]; 4],
 //!     patches: vec![PatchIncrement {
 //!         name: "bottom",
 //!         faces: face,
@@ -41,6 +40,31 @@ mod xdmf_document;
 
 pub use hdf5_writer::ResultsWriter;
 pub use restart_file::{read_restart_index, read_restart_state, RestartIndex};
+
+/// How the field datasets of an increment store their values (`[output]
+/// precision`, issue 45; a case's default is single, [`ResultsWriter`]'s
+/// double). The mesh, the history, the index and the restart states are
+/// double whatever it says.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Precision {
+    /// 8-byte floats: the values as the solver computed them.
+    Double,
+    /// 4-byte floats, rounded to nearest (relative rounding at most
+    /// 6e-8, 2⁻²⁴): half the bytes, and about half the compressed size
+    /// of fields whose last digits are noise. Abaqus writes its output
+    /// database in single precision unless asked otherwise.
+    Single,
+}
+
+impl Precision {
+    /// Bytes per value (the XDMF's `Precision`).
+    pub fn bytes(self) -> usize {
+        match self {
+            Precision::Double => 8,
+            Precision::Single => 4,
+        }
+    }
+}
 
 use std::path::PathBuf;
 
@@ -410,8 +434,6 @@ pub struct BodyIncrement<'a> {
     pub stress: &'a [[f64; 6]],
     /// Equivalent plastic strain per cell (plastic models only).
     pub plastic_strain: Option<&'a [f64]>,
-    /// Point displacement (`n_points`): `points` minus the initial points.
-    pub point_displacement: &'a [[f64; 3]],
     /// Contact (or other reported) patches.
     pub patches: Vec<PatchIncrement<'a>>,
 }

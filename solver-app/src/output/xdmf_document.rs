@@ -19,12 +19,17 @@
 //!
 //! Grids reference the body's *current* points (`/time/<k>/<body>/points`),
 //! so ParaView shows the deformed shape without any filter; the document
-//! says so in an `Information` element.
+//! says so in an `Information` element. There is no point displacement
+//! field (issue 45: it took 14 % of the shallow-ironing results, and it
+//! was the vector a "Warp By Vector" would have applied twice); a point's
+//! displacement is `/time/<k>/<body>/points − /mesh/<body>/points`.
 use std::fmt::Write;
+
+use super::Precision;
 
 /// Every field of every grid of a time step: name, XDMF type, centre.
 /// `plastic_strain` is left out of a step in which no body has it.
-pub(crate) const FIELDS: [(&str, &str, &str); 9] = [
+pub(crate) const FIELDS: [(&str, &str, &str); 8] = [
     ("displacement", "Vector", "Cell"),
     ("stress", "Tensor6", "Cell"),
     ("von_mises", "Scalar", "Cell"),
@@ -33,7 +38,6 @@ pub(crate) const FIELDS: [(&str, &str, &str); 9] = [
     ("contact_traction", "Vector", "Cell"),
     ("gap", "Scalar", "Cell"),
     ("block", "Scalar", "Cell"),
-    ("point_displacement", "Vector", "Node"),
 ];
 
 /// What the XDMF needs to know about a body.
@@ -61,12 +65,14 @@ pub(crate) struct PatchGrid {
 }
 
 /// One written increment: its number, time and, per body, whether it has
-/// plastic strain and which of the body's patches were written.
+/// plastic strain and which of the body's patches were written; and the
+/// precision of its fields (the datasets under `/time/<k>`).
 #[derive(Debug, Clone)]
 pub(crate) struct IncrementRecord {
     pub k: usize,
     pub time: f64,
     pub bodies: Vec<(bool, Vec<usize>)>,
+    pub precision: Precision,
 }
 
 /// Escapes a string for an XML attribute or text node.
@@ -87,10 +93,9 @@ pub(crate) fn esc(s: &str) -> String {
 
 /// What the document says about itself (`Information` elements).
 const CONFIGURATION: &str = "The geometry of every time step is the current (deformed) \
-configuration: /time/<k>/<body>/points = /mesh/<body>/points + point_displacement. \
-Do not apply Warp By Vector with point_displacement: it adds the displacement a second \
-time. Warp By Vector with scale factor -1 shows the reference configuration; \
-scale factor s shows the displacement 1 + s times.";
+configuration: /time/<k>/<body>/points; the displacement of a point is \
+/time/<k>/<body>/points - /mesh/<body>/points. Do not apply Warp By Vector with a \
+displacement: it adds the displacement a second time.";
 const FIELD_NOTE: &str = "Every body and patch grid carries every field, so that a \
 reader which merges them keeps all: body cells have the contact_pressure, \
 contact_traction and gap of the contact patch face they bound (0, 0 and NaN if none); \
@@ -143,7 +148,7 @@ pub(crate) fn render(h5_name: &str, title: &str, bodies: &[BodyGrid], steps: &[S
                 &b.name,
                 b.vis_cells,
                 &topology(b),
-                &pts,
+                &(pts, 8),
                 b,
                 "      ",
             );
@@ -173,7 +178,7 @@ pub(crate) fn render_step(h5_name: &str, bodies: &[BodyGrid], inc: &IncrementRec
     for (b, (plastic, patches)) in bodies.iter().zip(&inc.bodies) {
         let base = format!("/time/{}/{}", inc.k, b.name);
         let ind = "        ";
-        let points = format!("{base}/points");
+        let points = (format!("{base}/points"), inc.precision.bytes());
         grid_open(
             &mut x,
             &h5,
@@ -191,13 +196,12 @@ pub(crate) fn render_step(h5_name: &str, bodies: &[BodyGrid], inc: &IncrementRec
         };
         let mesh = format!("/mesh/{}/xdmf", b.name);
         let source = |field: &str| match field {
-            "plastic_strain" if !plastic => format!("{mesh}/zero"),
+            "plastic_strain" if !plastic => format!("{mesh}/{}", zero(inc.precision)),
             "contact_pressure" | "contact_traction" | "gap" => format!("{base}/xdmf/{field}"),
             "block" => format!("{mesh}/block"),
-            "point_displacement" => format!("{base}/point_displacement"),
             f => format!("{cells}/{f}"),
         };
-        attributes(&mut x, &h5, b.vis_cells, b.n_points, any_plastic, source);
+        attributes(&mut x, &h5, b.vis_cells, any_plastic, inc, source);
         let _ = writeln!(x, "{ind}</Grid>");
         for &p in patches {
             let pg = &b.patches[p];
@@ -210,15 +214,14 @@ pub(crate) fn render_step(h5_name: &str, bodies: &[BodyGrid], inc: &IncrementRec
             grid_open(&mut x, &h5, &name, pg.n_faces, &topo, &points, b, ind);
             let faces = format!("{base}/{}", pg.name);
             let source = |field: &str| match field {
-                "plastic_strain" if !plastic => format!("{mesh}/zero"),
+                "plastic_strain" if !plastic => format!("{mesh}/{}", zero(inc.precision)),
                 "displacement" | "stress" | "von_mises" | "plastic_strain" => {
                     format!("{faces}/xdmf/{field}")
                 }
                 "block" => format!("{mesh}/block"),
-                "point_displacement" => format!("{base}/point_displacement"),
                 f => format!("{faces}/{f}"),
             };
-            attributes(&mut x, &h5, pg.n_faces, b.n_points, any_plastic, source);
+            attributes(&mut x, &h5, pg.n_faces, any_plastic, inc, source);
             let _ = writeln!(x, "{ind}</Grid>");
         }
     }
@@ -226,12 +229,23 @@ pub(crate) fn render_step(h5_name: &str, bodies: &[BodyGrid], inc: &IncrementRec
     x
 }
 
+/// The name of the constant 0 (per shown cell or patch face, under
+/// `/mesh`) of a field in `precision`: an array that MergeBlocks appends
+/// to one of another type is dropped.
+pub(crate) fn zero(precision: Precision) -> &'static str {
+    match precision {
+        Precision::Double => "zero",
+        Precision::Single => "zero_single",
+    }
+}
+
 /// The body's topology dataset and its length.
 fn topology(b: &BodyGrid) -> (String, usize) {
     (format!("/mesh/{}/xdmf/topology", b.name), b.topo_len)
 }
 
-/// Opens a uniform grid: its mixed topology and the body's points.
+/// Opens a uniform grid: its mixed topology and the body's points (the
+/// dataset and its bytes per value).
 #[allow(clippy::too_many_arguments)]
 fn grid_open(
     x: &mut String,
@@ -239,7 +253,7 @@ fn grid_open(
     name: &str,
     n_cells: usize,
     (topo, topo_len): &(String, usize),
-    points: &str,
+    (points, bytes): &(String, usize),
     b: &BodyGrid,
     ind: &str,
 ) {
@@ -248,7 +262,7 @@ fn grid_open(
         x,
         "{ind}  <Topology TopologyType=\"Mixed\" NumberOfElements=\"{n_cells}\">"
     );
-    data_item(x, h5, topo, &[*topo_len], "Int", &format!("{ind}    "));
+    data_item(x, h5, topo, &[*topo_len], ("Int", 8), &format!("{ind}    "));
     let _ = writeln!(x, "{ind}  </Topology>");
     let _ = writeln!(x, "{ind}  <Geometry GeometryType=\"XYZ\">");
     data_item(
@@ -256,19 +270,21 @@ fn grid_open(
         h5,
         points,
         &[b.n_points, 3],
-        "Float",
+        ("Float", *bytes),
         &format!("{ind}    "),
     );
     let _ = writeln!(x, "{ind}  </Geometry>");
 }
 
-/// The attributes of [`FIELDS`], each from the dataset `source(name)`.
+/// The attributes of [`FIELDS`], each from the dataset `source(name)`:
+/// `block` 8-byte integers, the others floats in the increment's
+/// precision.
 fn attributes(
     x: &mut String,
     h5: &str,
     n_cells: usize,
-    n_points: usize,
     plastic: bool,
+    inc: &IncrementRecord,
     source: impl Fn(&str) -> String,
 ) {
     let ind = "          ";
@@ -276,27 +292,40 @@ fn attributes(
         if name == "plastic_strain" && !plastic {
             continue;
         }
-        let rows = if center == "Node" { n_points } else { n_cells };
         let (dims, number) = match (name, kind) {
-            ("block", _) => (vec![rows], "Int"),
-            (_, "Vector") => (vec![rows, 3], "Float"),
-            (_, "Tensor6") => (vec![rows, 6], "Float"),
-            _ => (vec![rows], "Float"),
+            ("block", _) => (vec![n_cells], "Int"),
+            (_, "Vector") => (vec![n_cells, 3], "Float"),
+            (_, "Tensor6") => (vec![n_cells, 6], "Float"),
+            _ => (vec![n_cells], "Float"),
         };
         let _ = writeln!(
             x,
             "{ind}<Attribute Name=\"{name}\" AttributeType=\"{kind}\" Center=\"{center}\">"
         );
-        data_item(x, h5, &source(name), &dims, number, &format!("{ind}  "));
+        let bytes = if name == "block" {
+            8
+        } else {
+            inc.precision.bytes()
+        };
+        let item = (number, bytes);
+        data_item(x, h5, &source(name), &dims, item, &format!("{ind}  "));
         let _ = writeln!(x, "{ind}</Attribute>");
     }
 }
 
-fn data_item(x: &mut String, h5: &str, path: &str, dims: &[usize], number: &str, ind: &str) {
+/// A DataItem of `path`: its number type and bytes per value.
+fn data_item(
+    x: &mut String,
+    h5: &str,
+    path: &str,
+    dims: &[usize],
+    (number, bytes): (&str, usize),
+    ind: &str,
+) {
     let dims: Vec<String> = dims.iter().map(|d| d.to_string()).collect();
     let _ = writeln!(
         x,
-        "{ind}<DataItem Dimensions=\"{}\" NumberType=\"{number}\" Precision=\"8\" Format=\"HDF\">{h5}:{}</DataItem>",
+        "{ind}<DataItem Dimensions=\"{}\" NumberType=\"{number}\" Precision=\"{bytes}\" Format=\"HDF\">{h5}:{}</DataItem>",
         dims.join(" "),
         esc(path)
     );

@@ -17,7 +17,7 @@ use std::process::{Command, Stdio};
 use hdf5::types::VarLenUnicode;
 use output::{
     von_mises, vtk, BodyIncrement, CellMeshData, OutputError, PatchFaces, PatchIncrement,
-    ResultsWriter,
+    Precision, ResultsWriter,
 };
 
 // ---------------------------------------------------------------- fixtures
@@ -126,7 +126,6 @@ struct Fields {
     displacement: Vec<[f64; 3]>,
     stress: Vec<[f64; 6]>,
     plastic: Vec<f64>,
-    point_displacement: Vec<[f64; 3]>,
     centres: Vec<[f64; 3]>,
     pressure: Vec<f64>,
     traction: Vec<[f64; 3]>,
@@ -157,7 +156,6 @@ fn fields(mesh: &CellMeshData, n_faces: usize, k: usize, seed: f64) -> Fields {
         plastic: (0..mesh.n_cells())
             .map(|c| 1e-3 * s * (c + 1) as f64)
             .collect(),
-        point_displacement: pd,
         centres: (0..n_faces).map(|f| [f as f64 + 0.5, 0.5, s]).collect(),
         pressure: (0..n_faces).map(|f| s * (f + 1) as f64).collect(),
         traction: (0..n_faces)
@@ -198,7 +196,6 @@ fn body<'a>(
         displacement: &f.displacement,
         stress: &f.stress,
         plastic_strain: plastic.then_some(f.plastic.as_slice()),
-        point_displacement: &f.point_displacement,
         patches,
     }
 }
@@ -208,7 +205,17 @@ const HISTORY_COLUMNS: [&str; 4] = ["time", "outer_iterations", "residual", "blo
 
 /// Writes increments `1..=n` of the two-body example.
 fn write_two_body(w: &mut ResultsWriter, hex: &CellMeshData, tet: &CellMeshData, n: usize) {
-    for k in 1..=n {
+    write_increments(w, hex, tet, 1..=n);
+}
+
+/// Writes increments `ks` of the two-body example.
+fn write_increments(
+    w: &mut ResultsWriter,
+    hex: &CellMeshData,
+    tet: &CellMeshData,
+    ks: std::ops::RangeInclusive<usize>,
+) {
+    for k in ks {
         let fh = fields(hex, 2, k, 0.0);
         let ft = fields(tet, 2, k, 10.0);
         let bodies = [
@@ -287,11 +294,6 @@ fn check_increment(f: &hdf5::File, hex: &CellMeshData, tet: &CellMeshData, k: us
         let b = format!("time/{k}/{name}");
         check_vec3(f, &format!("{b}/points"), &fx.points);
         check_vec3(f, &format!("{b}/displacement"), &fx.displacement);
-        check_vec3(
-            f,
-            &format!("{b}/point_displacement"),
-            &fx.point_displacement,
-        );
         let (shape, s) = read_f64(f, &format!("{b}/stress"));
         assert_eq!(shape, vec![mesh.n_cells(), 6]);
         assert_eq!(s, fx.stress.as_flattened());
@@ -346,7 +348,6 @@ fn check_increment(f: &hdf5::File, hex: &CellMeshData, tet: &CellMeshData, k: us
         members.sort();
         let mut expected = vec![
             "displacement",
-            "point_displacement",
             "points",
             "stress",
             "von_mises",
@@ -496,6 +497,9 @@ fn check_xdmf(xdmf: &Path, h5: &hdf5::File, n_steps: usize) -> Vec<Element> {
             .map(|d| d.parse().unwrap())
             .collect();
         assert_eq!(ds.shape(), dims, "{path}");
+        // the bytes per value the dataset has (fields in single or double)
+        let bytes: usize = e.attr("Precision").unwrap().parse().unwrap();
+        assert_eq!(ds.dtype().unwrap().size(), bytes, "{path}");
         n_items += 1;
     }
     assert!(n_items > 0);
@@ -626,16 +630,15 @@ fn two_body_results_read_back_exactly() {
     // the index of the increments in written order and their times
     assert_eq!(read_u64(&f, "increments"), (vec![2], vec![1, 2]));
     assert_eq!(read_f64(&f, "times"), (vec![2], TIMES[..2].to_vec()));
-    // fields: compressed by HDF5's own filters, units and columns named
+    // fields: units and columns named; datasets this small (96 B) are
+    // kept in their object header, uncompressed (larger ones are chunked
+    // and compressed: output::datasets's tests)
     let stress = f.dataset("time/1/block/stress").unwrap();
-    assert_eq!(stress.chunk(), Some(vec![2, 6]));
     assert_eq!(
-        stress.filters(),
-        [
-            hdf5::filters::Filter::shuffle(),
-            hdf5::filters::Filter::deflate(1)
-        ]
+        stress.layout(),
+        hdf5::plist::dataset_create::Layout::Compact
     );
+    assert!(stress.filters().is_empty());
     let text = |ds: &hdf5::Dataset, name: &str| {
         ds.attr(name)
             .unwrap()
@@ -725,7 +728,6 @@ fn two_body_results_read_back_exactly() {
         "stress:Tensor6",
         "von_mises:Scalar",
         "plastic_strain:Scalar",
-        "point_displacement:Vector",
         "contact_pressure:Scalar",
         "contact_traction:Vector",
         "gap:Scalar",
@@ -742,7 +744,7 @@ fn two_body_results_read_back_exactly() {
         g.1.iter().map(|(name, _)| name.clone()).collect()
     };
     assert_eq!(grids.len(), 4);
-    assert_eq!(fields(&grids[0]).len(), 9);
+    assert_eq!(fields(&grids[0]).len(), 8);
     for g in &grids {
         assert_eq!(fields(g), fields(&grids[0]), "{}", g.0);
     }
@@ -765,11 +767,6 @@ fn two_body_results_read_back_exactly() {
         ("block/top", "gap", "/time/2/block/top/gap"),
         ("block/top", "block", "/mesh/block/patches/top/block"),
         ("tets", "plastic_strain", "/mesh/tets/xdmf/zero"),
-        (
-            "tets",
-            "point_displacement",
-            "/time/2/tets/point_displacement",
-        ),
         (
             "tets/bottom",
             "plastic_strain",
@@ -1064,6 +1061,64 @@ fn forgotten_writer_leaves_written_increments_on_disk() {
     let xdmf_copy = dir.join("copy.xdmf");
     std::fs::write(&xdmf_copy, text).unwrap();
     check_xdmf(&xdmf_copy, &f, 3);
+}
+
+/// `[output] precision = "single"`: the fields are the values rounded to
+/// the nearest `f32`, the reference mesh stays double, and the XDMF gives
+/// each increment's precision, also after the file is reopened to go on
+/// in double from increment 1.
+#[test]
+fn single_precision_fields_are_the_values_rounded() {
+    let (dir, _tmp) = out_dir("single");
+    let (hex, tet) = (hex_body(), tet_body());
+    let bodies = [("block", &hex), ("tets", &tet)];
+    let mut w = ResultsWriter::create(&dir, "single", &bodies).unwrap();
+    w.set_precision(Precision::Single);
+    write_two_body(&mut w, &hex, &tet, 2);
+    w.close().unwrap();
+    let mut w = ResultsWriter::reopen(&dir, "single", &bodies, 1).unwrap();
+    write_increments(&mut w, &hex, &tet, 2..=2);
+    w.close().unwrap();
+    let f = hdf5::File::open(dir.join("single.h5")).unwrap();
+    let bytes = |p: &str| f.dataset(p).unwrap().dtype().unwrap().size();
+    let rounded = |v: &[f64]| -> Vec<f64> { v.iter().map(|&x| x as f32 as f64).collect() };
+    let fx = fields(&hex, 2, 1, 0.0);
+    for (path, expected) in [
+        ("time/1/block/points", fx.points.as_flattened()),
+        ("time/1/block/stress", fx.stress.as_flattened()),
+        ("time/1/block/top/gap", &fx.gap),
+        (
+            "time/1/block/top/xdmf/displacement",
+            &[fx.displacement[1], fx.displacement[0]].concat(),
+        ),
+    ] {
+        assert_eq!(bytes(path), 4, "{path}");
+        assert_eq!(read_f64(&f, path).1, rounded(expected), "{path}");
+    }
+    // (the points are values such as 1.001, which no f32 is)
+    assert_ne!(
+        read_f64(&f, "time/1/block/points").1,
+        fx.points.as_flattened()
+    );
+    let vm: Vec<f64> = fx.stress.iter().map(von_mises).collect();
+    assert_eq!(read_f64(&f, "time/1/block/von_mises").1, rounded(&vm));
+    assert_eq!(bytes("mesh/block/points"), 8);
+    // increment 2, written after the reopen: double, every value as given
+    assert_eq!(bytes("time/2/block/stress"), 8);
+    check_increment(&f, &hex, &tet, 2);
+    let els = check_xdmf(&dir.join("single.xdmf"), &f, 2);
+    let precision = |item: &str| {
+        let e = els
+            .iter()
+            .find(|e| e.text.trim() == format!("single.h5:{item}"));
+        e.and_then(|e| e.attr("Precision")).unwrap().to_string()
+    };
+    assert_eq!(precision("/time/1/tets/points"), "4");
+    // the elastic body's plastic_strain: a 0 of the increment's precision
+    assert_eq!(precision("/mesh/tets/xdmf/zero_single"), "4");
+    assert_eq!(precision("/mesh/tets/patches/bottom/zero_single"), "4");
+    assert_eq!(precision("/mesh/tets/xdmf/zero"), "8");
+    assert_eq!(precision("/time/2/tets/points"), "8");
 }
 
 /// Child side of [`sigkill_after_k_increments_leaves_k_readable`]: writes

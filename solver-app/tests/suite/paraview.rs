@@ -77,7 +77,7 @@ print("RESULT " + json.dumps({"reader": r.GetXMLName(), "times": times,
 "#;
 
 /// Every field of every block, as ParaView names them.
-const FIELDS: [&str; 9] = [
+const FIELDS: [&str; 8] = [
     "cell/block",
     "cell/contact_pressure",
     "cell/contact_traction",
@@ -86,7 +86,6 @@ const FIELDS: [&str; 9] = [
     "cell/plastic_strain",
     "cell/stress",
     "cell/von_mises",
-    "point/point_displacement",
 ];
 
 /// Smallest and largest value of a dataset.

@@ -133,10 +133,13 @@ fn plots_of_a_punch_run_and_the_numbers_behind_them() {
     assert!((pp.time - 1.0).abs() < 1e-12);
     assert_eq!(pp.faces.len(), 10);
     // Σ p A over the initial face areas is the contact normal force (the
-    // master is rigid: the force is the slave side's, small strain)
+    // master is rigid: the force is the slave side's, small strain), to
+    // the rounding of the pressures the file holds in single precision
+    // (2⁻²⁴ relative, all of one sign)
     let total = pp.force_initial_areas();
+    let single = f64::from(f32::EPSILON) / 2.0;
     assert!(
-        (total - fn_summary).abs() <= 1e-9 * fn_summary,
+        (total - fn_summary).abs() <= (single + 1e-12) * fn_summary,
         "Σ p A = {total}, summary {fn_summary}"
     );
     for f in &pp.faces {
@@ -149,7 +152,10 @@ fn plots_of_a_punch_run_and_the_numbers_behind_them() {
     // width
     let max_p = summary["contacts"][0]["max_pressure"].as_f64().unwrap();
     let peak = pp.peak().unwrap().0;
-    assert!((peak - max_p).abs() <= 1e-9 * max_p, "{peak} vs {max_p}");
+    assert!(
+        (peak - max_p).abs() <= (single + 1e-12) * max_p,
+        "{peak} vs {max_p}"
+    );
     for f in &pp.faces {
         let x = f.centre[0];
         assert!((f.position - (x - 0.5)).abs() < 1e-3, "{x}: {}", f.position);
@@ -166,8 +172,10 @@ fn plots_of_a_punch_run_and_the_numbers_behind_them() {
         (lo + 0.25).abs() < 1e-3 && (hi - 0.25).abs() < 1e-3,
         "{lo} {hi}"
     );
+    // (from face centres at x ≈ 0.25 and 0.75, each rounded to single
+    // precision in the file: at most 0.75 · 2⁻²⁴ apiece)
     assert!(
-        (lo + hi).abs() < 1e-9,
+        (lo + hi).abs() < 1.5 * single + 1e-12,
         "symmetric about the pressure centre"
     );
     let profile = pp.profile();
@@ -194,9 +202,11 @@ fn plots_of_a_punch_run_and_the_numbers_behind_them() {
         (punch.patches[0].0.as_str(), punch.patches[0].1.len()),
         ("ymin", 1)
     );
-    // the punch's bottom moved down by the indentation
+    // the punch's bottom moved down by the indentation (the points in
+    // single precision)
     let seg = punch.patches[0].1[0];
-    assert!((seg[0].1 - 0.49).abs() < 1e-12 && (seg[1].1 - 0.49).abs() < 1e-12);
+    let near = |y: f64| (y - 0.49).abs() < 0.49 * single + 1e-12;
+    assert!(near(seg[0].1) && near(seg[1].1), "{seg:?}");
 }
 
 #[test]

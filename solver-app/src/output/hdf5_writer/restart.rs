@@ -5,10 +5,12 @@
 //! /restart/<k>             attr time; the state at the end of increment k
 //! /restart/<k>/<a>/<b>/…   one dataset per state array (n_rows × columns, or n_rows)
 //! ```
-//! A deformable body's cell displacement is not repeated there: it is
-//! `/time/<k>/<body>/displacement`.
-//! written next to `/time/<k>` for every increment whose fields are
-//! written, compressed like the fields. [`ResultsWriter::reopen`] opens a
+//! A deformable body's cell displacement (`body/<name>/momentum/u`) is
+//! not repeated there when the fields are double: it is
+//! `/time/<k>/<body>/displacement`; with single-precision fields it is.
+//! Written next to `/time/<k>` for every increment whose fields are
+//! written, compressed like the fields, always double.
+//! [`ResultsWriter::reopen`] opens a
 //! file to continue it after increment K: what the file holds beyond K
 //! (fields, restart states, index entries, history rows) is removed and
 //! the XDMF lists increments 1..=K again.
@@ -20,7 +22,7 @@ use hdf5::{File, Group};
 
 use super::{body_states, group, put, put_attr, vlen, At, History, ResultsWriter};
 use crate::output::xdmf_document::{self, BodyGrid, IncrementRecord, PatchGrid};
-use crate::output::{CellMeshData, OutputError};
+use crate::output::{CellMeshData, OutputError, Precision};
 
 /// The group `name` of `parent`, created if missing.
 fn open_or_create(
@@ -34,6 +36,14 @@ fn open_or_create(
     } else {
         group(label, parent, gpath, name)
     }
+}
+
+/// Whether a restart array is a body's cell displacement
+/// (`body/<name>/momentum/u`).
+fn is_cell_displacement(name: &str) -> bool {
+    name.strip_prefix("body/")
+        .and_then(|r| r.strip_suffix("/momentum/u"))
+        .is_some_and(|body| !body.is_empty() && !body.contains('/'))
 }
 
 impl ResultsWriter {
@@ -61,7 +71,8 @@ impl ResultsWriter {
     }
 
     /// Writes the state at the end of increment `k` (time `time`) as
-    /// `/restart/<k>` and flushes the file.
+    /// `/restart/<k>` and flushes the file; a body's cell displacement
+    /// only if the increment's fields are not double (see the module).
     pub fn write_restart(
         &mut self,
         k: usize,
@@ -77,7 +88,11 @@ impl ResultsWriter {
         }
         let kg = group(l, &root, "/restart", &k.to_string())?;
         put_attr(l, &kg, &kp, "time", &time)?;
+        let double = self.precision == Precision::Double;
         for a in &state.arrays {
+            if double && is_cell_displacement(&a.name) {
+                continue;
+            }
             let (dir, name) = match a.name.rsplit_once('/') {
                 Some((d, n)) => (Some(d), n),
                 None => (None, a.name.as_str()),
@@ -132,7 +147,7 @@ impl ResultsWriter {
         let label = h5_path.display().to_string();
         let l = label.as_str();
         let file = File::with_options()
-            .with_fapl(|p| p.file_locking(false))
+            .with_fapl(super::access)
             .open_rw(&h5_path)
             .at(|| label.clone())?;
         // later increments go
@@ -204,10 +219,17 @@ impl ResultsWriter {
                 k: k as usize,
                 time,
                 bodies: Vec::with_capacity(grids.len()),
+                precision: Precision::Double,
             };
             for grid in &grids {
                 let bp = format!("/time/{k}/{}", grid.name);
                 let bg = file.group(&bp).at(|| format!("{l}:{bp}"))?;
+                // the precision the increment was written in (the case
+                // may have changed `[output] precision` since)
+                let at = || format!("{l}:{bp}/points");
+                if bg.dataset("points").at(at)?.dtype().at(at)?.size() == 4 {
+                    record.precision = Precision::Single;
+                }
                 let patches = (0..grid.patches.len())
                     .filter(|&i| bg.link_exists(&grid.patches[i].name))
                     .collect();
@@ -234,6 +256,7 @@ impl ResultsWriter {
             history,
             index: (increments, times),
             n_blocks,
+            precision: Precision::Double,
         };
         w.write_xdmf()?;
         Ok(w)

@@ -253,7 +253,11 @@ pub fn accepted_names() -> Vec<AcceptedNames> {
         n("contact", "detection", names(&contact::DETECTIONS)),
         n("contact", "slip_history", names(&contact::SLIP_HISTORIES)),
         n("contact", "face_position", names(&contact::FACE_POSITIONS)),
-        n("output", "precision", names(&settings::PRECISIONS)),
+        n(
+            "output",
+            "precision",
+            names(&crate::output::Precision::NAMES),
+        ),
     ]
 }
 

@@ -338,10 +338,6 @@ pub struct OutputSettings {
     pub precision: Precision,
 }
 
-/// `output.precision` by name.
-pub(crate) const PRECISIONS: [(&str, Precision); 2] =
-    [("double", Precision::Double), ("single", Precision::Single)];
-
 /// Default `[output] restart_every`: a state is about the size of the
 /// fields of an increment, so keeping every tenth (and the last) adds
 /// about a tenth to the results.
@@ -702,7 +698,7 @@ pub(crate) fn output(t: &Table<'_>) -> Res<OutputSettings> {
         every: t.opt("every", d.every, |n| n.usize_min(1))?,
         restart_every: t.opt("restart_every", d.restart_every, |n| n.usize_min(1))?,
         precision: t.opt("precision", d.precision, |n| {
-            n.choice("output precision", &PRECISIONS)
+            n.choice("output precision", &Precision::NAMES)
         })?,
     })
 }

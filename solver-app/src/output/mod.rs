@@ -57,6 +57,10 @@ pub enum Precision {
 }
 
 impl Precision {
+    /// The names of `[output] precision`.
+    pub const NAMES: [(&'static str, Precision); 2] =
+        [("double", Precision::Double), ("single", Precision::Single)];
+
     /// Bytes per value (the XDMF's `Precision`).
     pub fn bytes(self) -> usize {
         match self {

@@ -6,9 +6,10 @@
 use std::path::Path;
 
 use crate::background_writer::{BackgroundWriter, OwnedBody, OwnedIncrement, OwnedPatch};
+use crate::case::OutputSettings;
 use crate::contact_coupling::ContactSet;
 use crate::model::Body;
-use crate::output::{CellMeshData, OutputError, Precision, ResultsWriter};
+use crate::output::{CellMeshData, OutputError, ResultsWriter};
 use fv_mesh::{CellToPoint, Vector};
 
 /// Per-body fields of one written increment, allocated for the write only
@@ -60,9 +61,9 @@ impl FieldOutput {
         title: &str,
         bodies: &[Body],
         signature: &[String],
-        precision: Precision,
+        settings: &OutputSettings,
     ) -> Result<Self, OutputError> {
-        Self::open(dir, title, bodies, signature, None, precision)
+        Self::open(dir, title, bodies, signature, None, settings)
     }
 
     /// Opens the results of an earlier run of the case to continue them
@@ -74,9 +75,9 @@ impl FieldOutput {
         bodies: &[Body],
         signature: &[String],
         keep: usize,
-        precision: Precision,
+        settings: &OutputSettings,
     ) -> Result<Self, OutputError> {
-        Self::open(dir, title, bodies, signature, Some(keep), precision)
+        Self::open(dir, title, bodies, signature, Some(keep), settings)
     }
 
     fn open(
@@ -85,7 +86,7 @@ impl FieldOutput {
         bodies: &[Body],
         signature: &[String],
         keep: Option<usize>,
-        precision: Precision,
+        settings: &OutputSettings,
     ) -> Result<Self, OutputError> {
         let data: Vec<CellMeshData> = bodies.iter().map(mesh_data).collect::<Result<_, _>>()?;
         let named: Vec<(&str, &CellMeshData)> = bodies
@@ -98,7 +99,8 @@ impl FieldOutput {
             Some(k) => ResultsWriter::reopen(dir, title, &named, k)?,
         };
         w.write_case_signature(signature)?;
-        w.set_precision(precision);
+        w.set_precision(settings.precision);
+        w.set_fields(settings.fields);
         let writer = BackgroundWriter::start(w)?;
         Ok(FieldOutput { writer })
     }

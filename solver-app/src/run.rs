@@ -250,7 +250,7 @@ fn run_case_noting(
                     .map_err(|e| unwritable(case, opts, d, &e))?,
             ),
             Some(
-                FieldOutput::create(d, &case.title, &bodies, &signature, case.output.precision)
+                FieldOutput::create(d, &case.title, &bodies, &signature, &case.output)
                     .map_err(|e| unwritable(case, opts, d, &e))?,
             ),
         ),
@@ -259,15 +259,8 @@ fn run_case_noting(
             RunLog::append(d).map_err(|e| unwritable(case, opts, d, &e))?,
             Some(History::reopen(d, r.k).map_err(|e| unwritable(case, opts, d, &e))?),
             Some(
-                FieldOutput::reopen(
-                    d,
-                    &case.title,
-                    &bodies,
-                    &signature,
-                    r.k,
-                    case.output.precision,
-                )
-                .map_err(|e| unwritable(case, opts, d, &e))?,
+                FieldOutput::reopen(d, &case.title, &bodies, &signature, r.k, &case.output)
+                    .map_err(|e| unwritable(case, opts, d, &e))?,
             ),
         ),
         (None, _) => (RunLog::none(), None, None),

@@ -140,7 +140,7 @@ pub const CONTACT_RELAXATION: &[&str] = &["normal", "tangential"];
 pub const AUGMENTATION: &[&str] = &["penetration", "max_updates"];
 
 /// `[output]`.
-pub const OUTPUT: &[&str] = &["directory", "every", "restart_every", "precision"];
+pub const OUTPUT: &[&str] = &["directory", "every", "restart_every", "precision", "fields"];
 
 /// The keys one table of the case file accepts.
 #[derive(Debug, Clone, Copy)]
@@ -258,6 +258,7 @@ pub fn accepted_names() -> Vec<AcceptedNames> {
             "precision",
             names(&crate::output::Precision::NAMES),
         ),
+        n("output", "fields", names(&crate::output::Field::NAMES)),
     ]
 }
 

@@ -3,7 +3,7 @@
 use fv_discretise::RhieChowHistory;
 use fv_nonlinear::NonlinearMethod;
 
-use crate::output::Precision;
+use crate::output::{Field, FieldSet, Precision};
 use std::path::PathBuf;
 
 use super::keys;
@@ -336,6 +336,9 @@ pub struct OutputSettings {
     /// How the fields are stored (`"single"`, default, or `"double"`;
     /// restart states are double either way).
     pub precision: Precision,
+    /// Which fields an increment stores (default all; the current points
+    /// always).
+    pub fields: FieldSet,
 }
 
 /// Default `[output] restart_every`: a state is about the size of the
@@ -352,6 +355,7 @@ impl Default for OutputSettings {
             // half the results: shallow ironing (600 increments) 226 MB
             // in double, 131 MB (docs/solver-notes.md, "Results files")
             precision: Precision::Single,
+            fields: FieldSet::ALL,
         }
     }
 }
@@ -699,6 +703,12 @@ pub(crate) fn output(t: &Table<'_>) -> Res<OutputSettings> {
         restart_every: t.opt("restart_every", d.restart_every, |n| n.usize_min(1))?,
         precision: t.opt("precision", d.precision, |n| {
             n.choice("output precision", &Precision::NAMES)
+        })?,
+        fields: t.opt("fields", d.fields, |n| {
+            n.array()?
+                .iter()
+                .map(|item| item.node().choice("output field", &Field::NAMES))
+                .collect()
         })?,
     })
 }

@@ -95,6 +95,7 @@ fn defaults() {
     assert_eq!(c.output.every, 1);
     assert_eq!(c.output.restart_every, 10);
     assert_eq!(c.output.precision, crate::output::Precision::Single);
+    assert_eq!(c.output.fields, crate::output::FieldSet::ALL);
     assert!(c.contacts.is_empty());
     assert_eq!(c.bodies.len(), 1);
     let b = &c.bodies[0];
@@ -163,6 +164,7 @@ directory = "out/dir"
 every = 5
 restart_every = 20
 precision = "double"
+fields = ["von_mises", "contact_pressure", "von_mises"]
 "#;
     let c = parse(text);
     assert_eq!(c.analysis.kind, AnalysisKind::Dynamic);
@@ -203,6 +205,19 @@ precision = "double"
     let e = fail(&text.replace("precision = \"double\"", "precision = \"half\""));
     assert_eq!(e.key.as_deref(), Some("output.precision"));
     assert!(e.message.contains("\"double\", \"single\""), "{e}");
+    let held = [
+        crate::output::Field::VonMises,
+        crate::output::Field::ContactPressure,
+    ];
+    assert_eq!(c.output.fields, held.into_iter().collect());
+    let e = fail(&text.replace("\"contact_pressure\"", "\"pressure\""));
+    assert_eq!(e.key.as_deref(), Some("output.fields[1]"));
+    assert!(e.message.contains("\"displacement\", \"stress\""), "{e}");
+    let e = fail(&text.replace(
+        "[\"von_mises\", \"contact_pressure\", \"von_mises\"]",
+        "\"all\"",
+    ));
+    assert_eq!(e.key.as_deref(), Some("output.fields"));
     assert_eq!(c.source.line_of("solver.linear.method"), Some(21));
     let e = fail(&text.replace("\"accumulated\"", "\"total\""));
     assert_eq!(e.key.as_deref(), Some("solver.rhie_chow_history"));

@@ -23,7 +23,9 @@ use super::xdmf;
 use super::xdmf_document::{self, BodyGrid, IncrementRecord, PatchGrid};
 
 mod restart;
-use super::{von_mises, BodyIncrement, CellMeshData, OutputError, PatchIncrement, Precision};
+use super::{
+    von_mises, BodyIncrement, CellMeshData, Field, FieldSet, OutputError, PatchIncrement, Precision,
+};
 
 /// Names a patch may not take: they are datasets or groups of
 /// `/time/<k>/<body>/`.
@@ -94,7 +96,9 @@ pub(super) fn access(
 /// The index lets a reader take the increments in order without sorting
 /// the group names (which sort as strings: 1, 10, 100, 11, …). Field
 /// datasets are chunked and compressed (shuffle + deflate; at most 512 B:
-/// compact), double or single ([`ResultsWriter::set_precision`]), and carry the
+/// compact), double or single ([`ResultsWriter::set_precision`]), only those
+/// of the writer's [`FieldSet`] ([`ResultsWriter::set_fields`]; `points`
+/// always), and carry the
 /// attributes `units` (in the case's consistent units: `length`,
 /// `force/length^2`, `1`), `location` (`cell`, `point`, `face`) and, with
 /// several columns, `components` (`x y z`; stress `xx yy zz xy yz xz`).
@@ -118,6 +122,8 @@ pub struct ResultsWriter {
     n_blocks: usize,
     /// How the fields of the increments written next are stored.
     precision: Precision,
+    /// Which fields of the increments written next are stored.
+    fields: FieldSet,
 }
 
 struct BodyState {
@@ -173,6 +179,20 @@ fn put<T: H5Type>(
     debug_assert_eq!(shape.iter().product::<usize>(), data.len());
     super::datasets::create(g, name, data, shape).at(at)?;
     Ok(())
+}
+
+/// `write()` if `fields` holds the dataset `name` (every name that is not
+/// a [`Field`]'s is written).
+fn written(
+    fields: FieldSet,
+    name: &str,
+    write: impl FnOnce() -> Result<(), OutputError>,
+) -> Result<(), OutputError> {
+    if fields.holds_name(name) {
+        write()
+    } else {
+        Ok(())
+    }
 }
 
 /// [`put`] for a field's values, stored in `precision`, with the
@@ -420,6 +440,7 @@ impl ResultsWriter {
             index: (increments, times),
             n_blocks: bodies.len(),
             precision: Precision::Double,
+            fields: FieldSet::ALL,
         };
         w.write_xdmf()?;
         Ok(w)
@@ -430,6 +451,13 @@ impl ResultsWriter {
     /// XDMF gives each increment's own.
     pub fn set_precision(&mut self, precision: Precision) {
         self.precision = precision;
+    }
+
+    /// Stores only `fields` (and the current points) of the increments
+    /// written from now on (the writer starts with [`FieldSet::ALL`]); the
+    /// XDMF gives each increment's own.
+    pub fn set_fields(&mut self, fields: FieldSet) {
+        self.fields = fields;
     }
 
     /// Path of the `.h5` file.
@@ -478,6 +506,7 @@ impl ResultsWriter {
             time,
             bodies: Vec::with_capacity(self.bodies.len()),
             precision: self.precision,
+            fields: self.fields,
         };
         for (bi, &ii) in order.iter().enumerate() {
             let inc = &bodies[ii];
@@ -605,16 +634,20 @@ impl ResultsWriter {
             .iter()
             .map(|p| self.patch_index(l, bi, p))
             .collect::<Result<Vec<_>, _>>()?;
-        let pr = self.precision;
+        let (pr, fields) = (self.precision, self.fields);
         let field = |g: &Group, gp: &str, name: &str, v: &[f64], shape: &[usize], at| {
-            put_field(l, g, gp, name, v, shape, at, pr)
+            written(fields, name, || put_field(l, g, gp, name, v, shape, at, pr))
         };
         let state = &self.bodies[bi];
         self.write_zeros(l, state, &indices)?;
         let (np, nc) = (state.grid.n_points, state.n_cells);
         let bp = format!("{tp}/{}", b.name);
         let bg = group(l, tg, tp, b.name)?;
-        let vm: Vec<f64> = b.stress.iter().map(von_mises).collect();
+        let vm: Vec<f64> = if fields.contains(Field::VonMises) {
+            b.stress.iter().map(von_mises).collect()
+        } else {
+            Vec::new()
+        };
         field(&bg, &bp, "points", b.points.as_flattened(), &[np, 3], None)?;
         field(
             &bg,
@@ -663,11 +696,15 @@ impl ResultsWriter {
             let cells = &self.bodies[bi].face_cells[index];
             let xp = format!("{pp}/xdmf");
             let xg = group(l, &pg, &pp, "xdmf")?;
-            let disp = expand(cells, b.displacement);
             let at = Some("face");
-            field(&xg, &xp, "displacement", disp.as_flattened(), &[nf, 3], at)?;
-            let stress = expand(cells, b.stress);
-            field(&xg, &xp, "stress", stress.as_flattened(), &[nf, 6], at)?;
+            if fields.contains(Field::Displacement) {
+                let disp = expand(cells, b.displacement);
+                field(&xg, &xp, "displacement", disp.as_flattened(), &[nf, 3], at)?;
+            }
+            if fields.contains(Field::Stress) {
+                let stress = expand(cells, b.stress);
+                field(&xg, &xp, "stress", stress.as_flattened(), &[nf, 6], at)?;
+            }
             field(&xg, &xp, "von_mises", &expand(cells, &vm), &[nf], at)?;
             if let Some(ps) = b.plastic_strain {
                 field(&xg, &xp, "plastic_strain", &expand(cells, ps), &[nf], at)?;
@@ -685,6 +722,9 @@ impl ResultsWriter {
         state: &BodyState,
         indices: &[usize],
     ) -> Result<(), OutputError> {
+        if !self.fields.contains(Field::PlasticStrain) {
+            return Ok(());
+        }
         let name = xdmf_document::zero(self.precision);
         let bp = format!("/mesh/{}", state.grid.name);
         let mut places = vec![(format!("{bp}/xdmf"), state.grid.vis_cells)];
@@ -719,9 +759,9 @@ impl ResultsWriter {
         vm: &[f64],
         indices: &[usize],
     ) -> Result<(), OutputError> {
-        let pr = self.precision;
+        let (pr, fields) = (self.precision, self.fields);
         let field = |g: &Group, gp: &str, name: &str, v: &[f64], shape: &[usize], at| {
-            put_field(l, g, gp, name, v, shape, at, pr)
+            written(fields, name, || put_field(l, g, gp, name, v, shape, at, pr))
         };
         let state = &self.bodies[bi];
         let nc = state.n_cells;
@@ -753,10 +793,14 @@ impl ResultsWriter {
                 let t = expand(map, &traction);
                 field(&xg, &xp, "contact_traction", t.as_flattened(), &[n, 3], at)?;
                 field(&xg, &xp, "gap", &expand(map, &gap), &[n], at)?;
-                let d = expand(map, b.displacement);
-                field(&xg, &xp, "displacement", d.as_flattened(), &[n, 3], None)?;
-                let s = expand(map, b.stress);
-                field(&xg, &xp, "stress", s.as_flattened(), &[n, 6], None)?;
+                if fields.contains(Field::Displacement) {
+                    let d = expand(map, b.displacement);
+                    field(&xg, &xp, "displacement", d.as_flattened(), &[n, 3], None)?;
+                }
+                if fields.contains(Field::Stress) {
+                    let s = expand(map, b.stress);
+                    field(&xg, &xp, "stress", s.as_flattened(), &[n, 6], None)?;
+                }
                 field(&xg, &xp, "von_mises", &expand(map, vm), &[n], None)?;
                 if let Some(ps) = b.plastic_strain {
                     field(&xg, &xp, "plastic_strain", &expand(map, ps), &[n], None)?;

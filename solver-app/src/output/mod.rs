@@ -33,11 +33,13 @@
 //! ```
 mod datasets;
 mod face_cells;
+mod fields;
 mod hdf5_writer;
 mod restart_file;
 mod xdmf;
 mod xdmf_document;
 
+pub use fields::{Field, FieldSet};
 pub use hdf5_writer::ResultsWriter;
 pub use restart_file::{read_restart_index, read_restart_state, RestartIndex};
 

@@ -25,10 +25,12 @@
 //! displacement is `/time/<k>/<body>/points − /mesh/<body>/points`.
 use std::fmt::Write;
 
-use super::Precision;
+use super::{FieldSet, Precision};
 
 /// Every field of every grid of a time step: name, XDMF type, centre.
-/// `plastic_strain` is left out of a step in which no body has it.
+/// `plastic_strain` is left out of a step in which no body has it, and
+/// every field out of a step that was written without it (`[output]
+/// fields`).
 pub(crate) const FIELDS: [(&str, &str, &str); 8] = [
     ("displacement", "Vector", "Cell"),
     ("stress", "Tensor6", "Cell"),
@@ -73,6 +75,8 @@ pub(crate) struct IncrementRecord {
     pub time: f64,
     pub bodies: Vec<(bool, Vec<usize>)>,
     pub precision: Precision,
+    /// The fields written (`block` always).
+    pub fields: FieldSet,
 }
 
 /// Escapes a string for an XML attribute or text node.
@@ -289,7 +293,7 @@ fn attributes(
 ) {
     let ind = "          ";
     for (name, kind, center) in FIELDS {
-        if name == "plastic_strain" && !plastic {
+        if name == "plastic_strain" && !plastic || !inc.fields.holds_name(name) {
             continue;
         }
         let (dims, number) = match (name, kind) {

@@ -16,8 +16,8 @@ use std::process::{Command, Stdio};
 
 use hdf5::types::VarLenUnicode;
 use output::{
-    von_mises, vtk, BodyIncrement, CellMeshData, OutputError, PatchFaces, PatchIncrement,
-    Precision, ResultsWriter,
+    von_mises, vtk, BodyIncrement, CellMeshData, Field, FieldSet, OutputError, PatchFaces,
+    PatchIncrement, Precision, ResultsWriter,
 };
 
 // ---------------------------------------------------------------- fixtures
@@ -1119,6 +1119,82 @@ fn single_precision_fields_are_the_values_rounded() {
     assert_eq!(precision("/mesh/tets/patches/bottom/zero_single"), "4");
     assert_eq!(precision("/mesh/tets/xdmf/zero"), "8");
     assert_eq!(precision("/time/2/tets/points"), "8");
+}
+
+/// `[output] fields`: an increment stores the fields chosen (and the
+/// current points), in every body, every patch and the XDMF alike, so that
+/// each field the XDMF names is on every grid; a file reopened after
+/// increment 1 keeps increment 1 as written and goes on with every field.
+#[test]
+fn a_field_selection_writes_those_fields_on_every_grid() {
+    let (dir, _tmp) = out_dir("selection");
+    let (hex, tet) = (hex_body(), tet_body());
+    let bodies = [("block", &hex), ("tets", &tet)];
+    let mut w = ResultsWriter::create(&dir, "selection", &bodies).unwrap();
+    let chosen: FieldSet = [Field::VonMises, Field::ContactPressure]
+        .into_iter()
+        .collect();
+    w.set_fields(chosen);
+    write_two_body(&mut w, &hex, &tet, 2);
+    w.close().unwrap();
+    let f = hdf5::File::open(dir.join("selection.h5")).unwrap();
+    for (path, there) in [
+        ("time/1/block/points", true),
+        ("time/1/block/von_mises", true),
+        ("time/1/block/top/contact_pressure", true),
+        ("time/1/block/xdmf/contact_pressure", true),
+        ("time/1/block/top/xdmf/von_mises", true),
+        ("time/1/block/displacement", false),
+        ("time/1/block/stress", false),
+        ("time/1/block/plastic_strain", false),
+        ("time/1/block/top/face_centres", false),
+        ("time/1/block/top/contact_traction", false),
+        ("time/1/block/top/gap", false),
+        ("time/1/block/xdmf/gap", false),
+        ("time/1/block/top/xdmf/stress", false),
+    ] {
+        assert_eq!(f.link_exists(path), there, "{path}");
+    }
+    let fx = fields(&hex, 2, 2, 0.0);
+    let vm: Vec<f64> = fx.stress.iter().map(von_mises).collect();
+    assert_eq!(read_f64(&f, "time/2/block/von_mises").1, vm);
+    check_scalar(&f, "time/2/block/top/contact_pressure", &fx.pressure);
+    let names = |grids: &[(String, Vec<(String, String)>)]| -> Vec<Vec<String>> {
+        grids
+            .iter()
+            .map(|(_, attrs)| attrs.iter().map(|a| a.0.clone()).collect())
+            .collect()
+    };
+    let els = check_xdmf(&dir.join("selection.xdmf"), &f, 2);
+    let step = |els: &[Element], name: &str| {
+        els.iter()
+            .position(|e| e.attr("Name") == Some(name))
+            .unwrap()
+    };
+    let grids = grid_fields(&els[step(&els, "increment 2")..]);
+    assert_eq!(grids.len(), 4, "two bodies and two patches");
+    let expected = [
+        "von_mises:Scalar:Cell",
+        "contact_pressure:Scalar:Cell",
+        "block:Scalar:Cell",
+    ];
+    for g in names(&grids) {
+        assert_eq!(g, expected);
+    }
+    drop(f);
+    // go on from increment 1 with every field
+    let mut w = ResultsWriter::reopen(&dir, "selection", &bodies, 1).unwrap();
+    write_increments(&mut w, &hex, &tet, 2..=2);
+    w.close().unwrap();
+    let f = hdf5::File::open(dir.join("selection.h5")).unwrap();
+    check_increment(&f, &hex, &tet, 2);
+    let els = check_xdmf(&dir.join("selection.xdmf"), &f, 2);
+    for g in names(&grid_fields(&els[step(&els, "increment 1")..])) {
+        assert_eq!(g, expected, "increment 1 as it was written");
+    }
+    for g in names(&grid_fields(&els[step(&els, "increment 2")..])) {
+        assert_eq!(g.len(), 8, "every field: {g:?}");
+    }
 }
 
 /// Child side of [`sigkill_after_k_increments_leaves_k_readable`]: writes

@@ -104,15 +104,21 @@ fn range(v: &serde_json::Value, field: &str) -> (f64, f64) {
     }
 }
 
-#[test]
-fn default_reader_colours_every_block_by_every_field() {
-    if Command::new("pvpython").arg("--version").output().is_err() {
+/// Whether pvpython runs; says "skipped" when it does not.
+fn pvpython_found() -> bool {
+    let found = Command::new("pvpython").arg("--version").output().is_ok();
+    if !found {
         eprintln!("skipped: pvpython not found (ParaView; Debian: paraview python3-paraview)");
-        return;
     }
+    found
+}
+
+/// Runs `case` (title "pressed") into a temporary folder and opens its
+/// XDMF with [`PROBE`]; returns the folder and the probe's JSON.
+fn run_and_probe(case_text: &str) -> (tempfile::TempDir, serde_json::Value) {
     let dir = tempfile::tempdir().unwrap();
     let case = dir.path().join("case.toml");
-    std::fs::write(&case, PRESSED).unwrap();
+    std::fs::write(&case, case_text).unwrap();
     let out = dir.path().join("out");
     let (code, _, err) = fvc(&[
         "run",
@@ -141,6 +147,16 @@ fn default_reader_colours_every_block_by_every_field() {
     };
     let v: serde_json::Value = serde_json::from_str(line).unwrap();
     eprintln!("default reader: {}", v["reader"]);
+    (dir, v)
+}
+
+#[test]
+fn default_reader_colours_every_block_by_every_field() {
+    if !pvpython_found() {
+        return;
+    }
+    let (dir, v) = run_and_probe(PRESSED);
+    let res = dir.path().join("out/pressed");
     assert_eq!(v["times"], serde_json::json!([0.5, 1.0]));
 
     // the blocks in the XDMF's order: base, base/ymax, punch, punch/ymin
@@ -216,4 +232,39 @@ fn default_reader_colours_every_block_by_every_field() {
         range(&merged, "cell/von_mises"),
         (base.0.min(punch.0), base.1.max(punch.1))
     );
+}
+
+/// `[output] fields`: the fields kept are on every block, with the ranges
+/// of the `.h5`; the others on none.
+#[test]
+fn default_reader_colours_every_block_by_the_fields_chosen() {
+    if !pvpython_found() {
+        return;
+    }
+    let case = format!("{PRESSED}[output]\nfields = [\"von_mises\", \"contact_pressure\"]\n");
+    let (dir, v) = run_and_probe(&case);
+    let f = hdf5::File::open(dir.path().join("out/pressed/pressed.h5")).unwrap();
+    let kept = ["cell/block", "cell/contact_pressure", "cell/von_mises"];
+    let blocks = v["blocks"].as_array().unwrap();
+    assert_eq!(blocks.len(), 4);
+    for (i, b) in blocks
+        .iter()
+        .chain([&serde_json::json!({ "arrays": v["merged"] })])
+        .enumerate()
+    {
+        let mut names: Vec<&str> = b["arrays"]
+            .as_object()
+            .unwrap()
+            .keys()
+            .map(String::as_str)
+            .collect();
+        names.sort();
+        assert_eq!(names, kept, "block {i} (4: merged)");
+    }
+    let vm = h5_range(&f, "/time/2/base/von_mises");
+    assert!(vm.1 > 0.0);
+    assert_eq!(range(&blocks[0], "cell/von_mises"), vm);
+    let p = h5_range(&f, "/time/2/base/ymax/contact_pressure");
+    assert!(p.1 > 0.0, "in contact: {p:?}");
+    assert_eq!(range(&blocks[1], "cell/contact_pressure"), p);
 }

@@ -6,8 +6,9 @@
 //! /restart/<k>/<a>/<b>/…   one dataset per state array (n_rows × columns, or n_rows)
 //! ```
 //! A deformable body's cell displacement (`body/<name>/momentum/u`) is
-//! not repeated there when the fields are double: it is
-//! `/time/<k>/<body>/displacement`; with single-precision fields it is.
+//! not repeated there when the increment's `displacement` field is
+//! written in double: it is `/time/<k>/<body>/displacement`; with
+//! single-precision fields, or without that field, it is.
 //! Written next to `/time/<k>` for every increment whose fields are
 //! written, compressed like the fields, always double.
 //! [`ResultsWriter::reopen`] opens a
@@ -22,7 +23,7 @@ use hdf5::{File, Group};
 
 use super::{body_states, group, put, put_attr, vlen, At, History, ResultsWriter};
 use crate::output::xdmf_document::{self, BodyGrid, IncrementRecord, PatchGrid};
-use crate::output::{CellMeshData, OutputError, Precision};
+use crate::output::{CellMeshData, Field, FieldSet, OutputError, Precision};
 
 /// The group `name` of `parent`, created if missing.
 fn open_or_create(
@@ -72,7 +73,8 @@ impl ResultsWriter {
 
     /// Writes the state at the end of increment `k` (time `time`) as
     /// `/restart/<k>` and flushes the file; a body's cell displacement
-    /// only if the increment's fields are not double (see the module).
+    /// only if the increment's `displacement` is not written in double
+    /// (see the module).
     pub fn write_restart(
         &mut self,
         k: usize,
@@ -88,7 +90,8 @@ impl ResultsWriter {
         }
         let kg = group(l, &root, "/restart", &k.to_string())?;
         put_attr(l, &kg, &kp, "time", &time)?;
-        let double = self.precision == Precision::Double;
+        let double = self.precision == Precision::Double
+            && self.fields.contains(crate::output::Field::Displacement);
         for a in &state.arrays {
             if double && is_cell_displacement(&a.name) {
                 continue;
@@ -220,6 +223,7 @@ impl ResultsWriter {
                 time,
                 bodies: Vec::with_capacity(grids.len()),
                 precision: Precision::Double,
+                fields: FieldSet::NONE,
             };
             for grid in &grids {
                 let bp = format!("/time/{k}/{}", grid.name);
@@ -229,6 +233,19 @@ impl ResultsWriter {
                 let at = || format!("{l}:{bp}/points");
                 if bg.dataset("points").at(at)?.dtype().at(at)?.size() == 4 {
                     record.precision = Precision::Single;
+                }
+                // the fields it was written with (`[output] fields` may
+                // have changed since): each is in every body or in none
+                for (name, f) in Field::NAMES {
+                    let path = match f {
+                        Field::ContactPressure | Field::ContactTraction | Field::Gap => {
+                            format!("xdmf/{name}")
+                        }
+                        _ => name.to_string(),
+                    };
+                    if f != Field::FaceCentres && bg.link_exists(&path) {
+                        record.fields = record.fields.with(f);
+                    }
                 }
                 let patches = (0..grid.patches.len())
                     .filter(|&i| bg.link_exists(&grid.patches[i].name))
@@ -257,6 +274,7 @@ impl ResultsWriter {
             index: (increments, times),
             n_blocks,
             precision: Precision::Double,
+            fields: FieldSet::ALL,
         };
         w.write_xdmf()?;
         Ok(w)

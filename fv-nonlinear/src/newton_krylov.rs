@@ -20,7 +20,7 @@
 use std::ops::ControlFlow;
 
 use crate::forcing::{Forcing, ForcingParams};
-use crate::gmres::{Gmres, GmresParams, KrylovSystem};
+use crate::gmres::{Gmres, GmresInfo, GmresParams, KrylovSystem};
 use crate::line_search::{next_length, sufficient, LineSearchParams, NonMonotone, STALL_PROGRESS};
 use crate::problem::{Frozen, Inadmissible, NonlinearProblem};
 use crate::pseudo_transient::{PseudoTransient, PseudoTransientParams};
@@ -349,6 +349,48 @@ impl NewtonKrylov {
     /// The residual F at the last accepted iterate of the last solve.
     pub fn residual(&self) -> &[f64] {
         &self.f
+    }
+
+    /// Solves −J(x) y = b by GMRES with the problem's preconditioner, J by
+    /// finite differences about `x`, whose residual is `fx` (the problem's
+    /// frozen data as they are; its preconditioner prepared at `x`), to
+    /// the relative `tolerance` in at most `max_iterations` products, in
+    /// the solver's Krylov workspace. `y` holds the first guess on entry
+    /// and the solution on return. For a first iterate along the tangent,
+    /// x₀ = −J⁻¹ ∂F/∂t Δt, where the preconditioner's approximation of it
+    /// is not close enough.
+    #[allow(clippy::too_many_arguments)]
+    pub fn tangent_solve<P: NonlinearProblem>(
+        &mut self,
+        problem: &mut P,
+        x: &[f64],
+        fx: &[f64],
+        b: &[f64],
+        y: &mut [f64],
+        tolerance: f64,
+        max_iterations: usize,
+    ) -> Result<GmresInfo, Inadmissible> {
+        let n = x.len();
+        self.x_trial.resize(n, 0.0);
+        self.f_trial.resize(n, 0.0);
+        let size = norm(x) + problem.typical_size() * (n as f64).sqrt();
+        let mut system = NegativeJacobian {
+            problem: &mut *problem,
+            x,
+            fx,
+            x_probe: &mut self.x_trial,
+            f_probe: &mut self.f_trial,
+            size,
+            shift: 0.0,
+            evaluations: 0,
+        };
+        let params = GmresParams {
+            tolerance,
+            max_iterations,
+            flexible: self.params.krylov.flexible && !system.problem.linear_preconditioner(),
+            ..self.params.krylov
+        };
+        self.gmres.solve(&mut system, b, y, &params)
     }
 
     /// Solves F(x) = 0 from the starting point `x` (overwritten with the

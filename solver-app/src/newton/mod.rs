@@ -205,7 +205,16 @@ impl NewtonKrylovSolver {
         bodies: &'a mut [Body],
         contacts: &'a mut ContactSet,
     ) -> ModelProblem<'a> {
-        ModelProblem {
+        self.newton_and_problem(bodies, contacts).1
+    }
+
+    /// [`Self::problem`] beside the Newton solver's workspace.
+    fn newton_and_problem<'a>(
+        &'a mut self,
+        bodies: &'a mut [Body],
+        contacts: &'a mut ContactSet,
+    ) -> (&'a mut NewtonKrylov, ModelProblem<'a>) {
+        let problem = ModelProblem {
             bodies,
             contacts,
             layout: &self.layout,
@@ -223,7 +232,8 @@ impl NewtonKrylovSolver {
             evaluations: 0,
             last_refusal: None,
             penetration: (0.0, None),
-        }
+        };
+        (&mut self.newton, problem)
     }
 
     /// `"auto"` may switch to the assembled Jacobian when a Newton step
@@ -255,28 +265,12 @@ impl NewtonKrylovSolver {
         on_iteration: &mut dyn FnMut(usize, f64) -> ControlFlow<()>,
     ) -> Result<NewtonInfo, NewtonError> {
         let switch_after = self.may_switch().then_some(SWITCH_KRYLOV_ITERATIONS);
-        let mut problem = ModelProblem {
-            bodies,
-            contacts,
-            layout: &self.layout,
-            params: self.params,
-            work: &mut self.work,
-            preconditioner: &mut self.operator,
-            jacobian: &mut self.jacobian,
-            switch_after,
-            switched: None,
-            times: &mut self.times,
-            reference: 0.0,
-            changes: 0,
-            cell_size: self.cell_size,
-            stiffness_area: self.stiffness_area,
-            evaluations: 0,
-            last_refusal: None,
-            penetration: (0.0, None),
-        };
+        let mut x = std::mem::take(&mut self.x);
+        let (newton, mut problem) = self.newton_and_problem(bodies, contacts);
+        problem.switch_after = switch_after;
         let done = total.iterations;
         let trace = std::env::var_os("FVC_TRACE").is_some();
-        let result = self.newton.solve(&mut problem, &mut self.x, &mut |r| {
+        let result = newton.solve(&mut problem, &mut x, &mut |r| {
             if trace {
                 trace_iteration(r);
             }
@@ -286,8 +280,10 @@ impl NewtonKrylovSolver {
                 ControlFlow::Continue(())
             }
         });
-        self.newton.release_krylov_pages();
-        if let Some(krylov) = problem.switched {
+        newton.release_krylov_pages();
+        let switched = problem.switched;
+        self.x = x;
+        if let Some(krylov) = switched {
             self.notes.push(format!(
                 "t = {:.6e}: a Newton step needed {krylov} Krylov iterations with the segregated operator as preconditioner; the assembled Jacobian preconditions from the next step on ([solver] linear.preconditioner = \"auto\")",
                 self.step_times.1

@@ -225,6 +225,11 @@ pub fn stiffness_area(bodies: &[Body]) -> f64 {
 }
 
 impl ModelProblem<'_> {
+    /// Whether the assembled Jacobian, the tangent itself, preconditions.
+    pub fn linear_preconditioner_is_tangent(&self) -> bool {
+        self.jacobian.is_some()
+    }
+
     /// Sets the bodies' unknown fields to the start plus `x`.
     fn scatter(&mut self, x: &[f64]) {
         let start = &self.work.start;

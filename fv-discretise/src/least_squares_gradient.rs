@@ -145,13 +145,28 @@ impl LeastSquaresGradient {
         boundary: &[Vector],
         out: &mut [Tensor],
     ) {
+        self.vector_gradient_of(mesh, geom, |i| cell[i], |b| boundary[b], out);
+    }
+
+    /// [`Self::vector_gradient`] of the field whose value in cell i is
+    /// `cell(i)` and on boundary face b (index `face − n_internal_faces`)
+    /// `boundary(b)`: for a field formed where it is read, such as an
+    /// increment u − u_old.
+    pub fn vector_gradient_of(
+        &self,
+        mesh: &PolyMesh,
+        geom: &MeshGeometry,
+        cell: impl Fn(usize) -> Vector,
+        boundary: impl Fn(usize) -> Vector,
+        out: &mut [Tensor],
+    ) {
         out.iter_mut().for_each(|t| *t = Tensor::zeros());
         let ni = mesh.n_internal_faces();
         for f in 0..ni {
             let o = mesh.owner[f] as usize;
             let n = mesh.neighbour[f] as usize;
             let (c_o, c_n) = self.internal_coefficients(mesh, geom, f);
-            let diff = cell[n] - cell[o];
+            let diff = cell(n) - cell(o);
             out[o] += c_o * diff.transpose();
             out[n] -= c_n * diff.transpose();
         }
@@ -159,7 +174,7 @@ impl LeastSquaresGradient {
             for f in p.faces() {
                 let o = mesh.owner[f] as usize;
                 let c = self.boundary_coefficient(mesh, geom, f, passive);
-                out[o] += c * (boundary[f - ni] - cell[o]).transpose();
+                out[o] += c * (boundary(f - ni) - cell(o)).transpose();
             }
         }
     }

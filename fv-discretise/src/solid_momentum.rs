@@ -939,6 +939,30 @@ impl SolidMomentum {
         self.update_stress()
     }
 
+    /// Cell gradient of the current u and u_b, of the increment u − u_old
+    /// under the updated Lagrangian form formed where it is read (Δu and
+    /// Δu_b, which the boundary update refreshes, are left as they are);
+    /// the stress is not updated. For an iterate whose cells and boundary
+    /// values were mixed (Anderson): the least-squares gradient is linear
+    /// in them on a fixed mesh, so the gradient of the mix is the mix of
+    /// the gradients.
+    pub fn update_gradient(&mut self, mesh: &PolyMesh, geom: &MeshGeometry) {
+        let (u, u_b) = (&self.u, &self.u_b);
+        if self.law.is_updated_lagrangian() {
+            let (u_old, u_b_old) = (&self.u_old, &self.u_b_old);
+            self.gradient.vector_gradient_of(
+                mesh,
+                geom,
+                |i| u[i] - u_old[i],
+                |b| u_b[b] - u_b_old[b],
+                &mut self.grad_u,
+            );
+        } else {
+            self.gradient
+                .vector_gradient(mesh, geom, u, u_b, &mut self.grad_u);
+        }
+    }
+
     /// Cell stress (and σ̂ under the updated Lagrangian form) from the
     /// current cell gradient. A cell whose increment is not invertible
     /// keeps its previous stress and trial state; the first such cell and

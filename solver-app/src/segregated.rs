@@ -13,7 +13,7 @@ use fv_discretise::{
     CsrMatrix, FaceSlots, LinearSolver, LinearSolverError, MomentumParams, SolveInfo,
 };
 use fv_mesh::{Tensor, Vector};
-use std::ops::{ControlFlow, Range};
+use std::ops::ControlFlow;
 use std::time::Instant;
 
 /// Smallest reference of the relative residual, as a fraction of the total
@@ -101,11 +101,13 @@ const MIN_RELAXATION_FRACTION: f64 = 1.0 / 16.0;
 /// `acceleration_depth` ([`budgeted_depth`]).
 const ANDERSON_BUDGET_CELLS: usize = 100_000;
 
-/// Bytes per cell of Anderson's history on a large mesh: 2 m + 2 columns
-/// of the mixed state (cells, boundary values, normal derivatives and the
-/// cell gradient, ~100 B per cell of a box), so depth 3 rather than 10 on
-/// a box, and the whole run within 2 kB per cell (the rest of the
-/// segregated method takes ~1.15 kB per cell at 64³). Measured,
+/// Bytes per cell of Anderson's history on a large mesh, reckoned as
+/// 2 m + 2 columns of the whole mixed state (cells, boundary values,
+/// normal derivatives and the cell gradient, ~100 B per cell of a box),
+/// so depth 3 rather than 10 on a box. (The iterates no longer hold the
+/// gradient, `mix_iterates`: the history at that depth takes ~0.5 kB per
+/// cell of a box, and the run 1.7 kB; the rule is kept so that the depth,
+/// and with it the answer, stays what it was.) Measured,
 /// segregated, 1 step (outer iterations, peak RSS): box64 (262,144 cells)
 /// depth 10: 24, 980 MB (before the history's pages were released for
 /// the output); 6: 24, 664 MB; 5: 26; 4: 27; 3: 28, 510 MB; a cantilever
@@ -249,7 +251,10 @@ pub struct SegregatedSolver {
     rhs: Vec<f64>,
     x: Vec<f64>,
     /// Right-hand sides and solutions of the components that share a
-    /// matrix, solved side by side (`LinearSolver::solve_each`).
+    /// matrix, solved side by side (`LinearSolver::solve_each`), or across
+    /// the contact springs in turn; allocated when first used (on one
+    /// thread the components are solved one after the other through `rhs`
+    /// and `x`, [`SegregatedSolver::solve_components_one_by_one`]).
     rhs_each: [Vec<f64>; 3],
     x_each: [Vec<f64>; 3],
     /// Per-body reports of the bodies updated side by side.
@@ -426,12 +431,18 @@ impl SegregatedSolver {
             .iter()
             .map(|b| b.extent)
             .fold(f64::MIN_POSITIVE, f64::max);
-        // the acceleration's iterate: cells, then every deformable body's
-        // boundary values, normal derivatives and cell gradients
+        // the acceleration's correction: cells, then every deformable
+        // body's boundary values, normal derivatives and cell gradients;
+        // its iterate: the same without the gradients (`mix_iterates`)
         let n_mixed = n + bodies
             .iter()
             .filter(|b| !b.rigid)
             .map(mixed_state_len)
+            .sum::<usize>();
+        let n_iterate = n + bodies
+            .iter()
+            .filter(|b| !b.rigid)
+            .map(iterate_state_len)
             .sum::<usize>();
         let mut notes = Vec::new();
         let depth = if settings.acceleration_depth_given {
@@ -453,8 +464,8 @@ impl SegregatedSolver {
             slots,
             rhs: vec![0.0; n],
             x: vec![0.0; n],
-            rhs_each: std::array::from_fn(|_| vec![0.0; n]),
-            x_each: std::array::from_fn(|_| vec![0.0; n]),
+            rhs_each: Default::default(),
+            x_each: Default::default(),
             body_updates: Vec::new(),
             delta: vec![Vector::zeros(); n],
             u_start: vec![Vector::zeros(); n],
@@ -483,7 +494,9 @@ impl SegregatedSolver {
             accelerate: true,
             anderson: match settings.acceleration {
                 Acceleration::None => None,
-                Acceleration::Anderson => Some(AndersonAcceleration::new(n_mixed, depth)),
+                Acceleration::Anderson => {
+                    Some(AndersonAcceleration::new(n_iterate, n_mixed, depth))
+                }
             },
             step_times: (0.0, 0.0),
             predictor: match settings.predictor {
@@ -1065,6 +1078,10 @@ impl SegregatedSolver {
     /// be alone, so the results do not depend on the number of threads.
     /// Returns the linear iterations.
     fn solve_components(&mut self, bodies: &[Body]) -> Result<usize, SolveError> {
+        if rayon::current_num_threads() == 1 {
+            return self.solve_components_one_by_one(bodies);
+        }
+        self.allocate_each();
         // jobs: one per matrix, with the components it solves
         let mut job_matrix = [usize::MAX; 3];
         let mut job_components = [[0usize; 3]; 3];
@@ -1141,10 +1158,43 @@ impl SegregatedSolver {
         Ok(linear_iterations)
     }
 
+    /// [`Self::solve_components`] on one thread: every component's solve
+    /// is the one `LinearSolver::solve_each` would make there (one after
+    /// the other from zero, with the same factorisation), through one
+    /// right-hand side and one solution instead of three of each (48 B per
+    /// cell less).
+    fn solve_components_one_by_one(&mut self, bodies: &[Body]) -> Result<usize, SolveError> {
+        let mut linear_iterations = 0;
+        for c in 0..3 {
+            let Some(mi) = self.component_matrix[c] else {
+                self.delta.iter_mut().for_each(|d| d[c] = 0.0);
+                continue;
+            };
+            gather_residual(bodies, c, &mut self.rhs);
+            self.x.iter_mut().for_each(|x| *x = 0.0);
+            let start = Instant::now();
+            let info = self.solvers[mi].solve(&self.matrices[mi], &self.rhs, &mut self.x);
+            self.times.lap(Phase::LinearSolve, start);
+            linear_iterations += info?.iterations;
+            for (d, &x) in self.delta.iter_mut().zip(&self.x) {
+                d[c] = x;
+            }
+        }
+        Ok(linear_iterations)
+    }
+
+    /// [`Self::rhs_each`] and [`Self::x_each`] of length n.
+    fn allocate_each(&mut self) {
+        for v in self.rhs_each.iter_mut().chain(self.x_each.iter_mut()) {
+            v.resize(self.n, 0.0);
+        }
+    }
+
     /// The correction of every solved component, one after another across
     /// the stiff contact springs ([`springs_in_turn::solve_in_turn`]);
     /// returns the linear iterations.
     fn solve_components_in_turn(&mut self, bodies: &[Body]) -> Result<usize, SolveError> {
+        self.allocate_each();
         for c in 0..3 {
             gather_residual(bodies, c, &mut self.rhs_each[c]);
         }
@@ -1200,21 +1250,25 @@ impl SegregatedSolver {
     }
 
     /// The acceleration's iterate besides the cells at the start of an
-    /// outer iteration: u_b, n·∇u and the cell gradient of every deformable
-    /// body into the history's current iterate (their change is taken at
-    /// the end). The stacked iterate is the cells' displacement, then per
-    /// deformable body its boundary values u_b, normal derivatives n·∇u
-    /// and cell gradient ([`mixed_state_len`]).
+    /// outer iteration: u_b and n·∇u of every deformable body into the
+    /// history's current iterate, the cell gradient into its correction
+    /// (their change is taken at the end). The stacked iterate is the
+    /// cells' displacement, then per deformable body its boundary values
+    /// u_b and normal derivatives n·∇u ([`iterate_state_len`]); the
+    /// stacked correction the same, with every body's cell gradient after
+    /// its n·∇u ([`mixed_state_len`]).
     fn snapshot_mixed_state(&mut self, bodies: &[Body]) {
         let Some(anderson) = &mut self.anderson else {
             return;
         };
-        let (x, _) = anderson.current_mut();
-        let mut at = self.n;
+        let (x, f) = anderson.current_mut();
+        let (mut at_x, mut at_f) = (self.n, self.n);
         for b in bodies.iter().filter(|b| !b.rigid) {
-            let len = mixed_state_len(b);
-            read_mixed_state(b, &mut x[at..at + len]);
-            at += len;
+            let (len_x, len_f) = (iterate_state_len(b), mixed_state_len(b));
+            read_mixed_state(b, &mut x[at_x..at_x + len_x]);
+            f[at_f + len_x..at_f + len_f].copy_from_slice(gradient_columns(&b.momentum.grad_u));
+            at_x += len_x;
+            at_f += len_f;
         }
     }
 
@@ -1226,40 +1280,59 @@ impl SegregatedSolver {
     /// so the map the history describes depends on all of them; mixed on
     /// the cells alone it has a memory the mixing cannot see (plane-stress
     /// cantilever: 3,177 outer iterations at depth 5, 85 over the whole
-    /// state). The gradient is mixed rather than recomputed from the mixed
-    /// cells and boundary values: those two are not a consistent pair, and
-    /// across a thin wedge cell their mismatch is a huge hoop gradient (the
-    /// shell under a pole load diverged; now 70 against 491 plain). The
-    /// whole mixed iterate, cells included, is written back to the bodies.
+    /// state). The gradient is not recomputed from the mixed cells and
+    /// boundary values: those two are not a consistent pair, and across a
+    /// thin wedge cell their mismatch is a huge hoop gradient (the shell
+    /// under a pole load diverged; now 70 against 491 plain). Its mix is
+    /// the gradient of Σ α_k u_k and Σ α_k u_b'_k, the cells each
+    /// iteration's gradient was formed from (before their correction) and
+    /// the boundary values it was formed with, which the history has
+    /// without it: the least-squares gradient is linear in them
+    /// (`SolidMomentum::update_gradient`). So the history's iterates hold
+    /// no gradient (72 B per cell and column less), only its corrections
+    /// do, for γ; the same iteration up to round-off. The whole mixed
+    /// iterate, cells included, is written back to the bodies.
     fn mix_iterates(&mut self, bodies: &mut [Body]) {
         let Some(anderson) = &mut self.anderson else {
             return;
         };
         let beta = self.relaxation;
         let (x, f) = anderson.current_mut();
-        let mut at = self.n;
+        let (mut at_x, mut at_f) = (self.n, self.n);
         for b in bodies.iter().filter(|b| !b.rigid) {
             let (off, nc) = (b.offset, b.mesh.n_cells);
             x[off..off + nc].copy_from_slice(&b.momentum.u);
             f[off..off + nc].copy_from_slice(&self.delta[off..off + nc]);
             // the state this iteration left, less the one it started from
-            let len = mixed_state_len(b);
-            let f = &mut f[at..at + len];
-            read_mixed_state(b, f);
-            for (f, x) in f.iter_mut().zip(&x[at..at + len]) {
+            // (the gradient's: in f since `snapshot_mixed_state`)
+            let (len_x, len_f) = (iterate_state_len(b), mixed_state_len(b));
+            let f = &mut f[at_f..at_f + len_f];
+            let (boundary, gradient) = f.split_at_mut(len_x);
+            read_mixed_state(b, boundary);
+            for (f, x) in boundary.iter_mut().zip(&x[at_x..at_x + len_x]) {
                 *f = (*f - x) / beta;
             }
-            at += len;
+            for (f, g) in gradient
+                .iter_mut()
+                .zip(gradient_columns(&b.momentum.grad_u))
+            {
+                *f = (g - *f) / beta;
+            }
+            at_x += len_x;
+            at_f += len_f;
         }
         anderson.step(beta);
-        let mut at = self.n;
+        let (mut at_x, mut at_f) = (self.n, self.n);
         for b in bodies.iter_mut().filter(|b| !b.rigid) {
+            write_mixed_state(b, anderson, at_x, at_f);
             let off = b.offset;
-            let u = &mut b.momentum.u;
-            anderson.next_iterate(off..off + u.len(), u);
-            let len = mixed_state_len(b);
-            write_mixed_state(b, anderson, at..at + len);
-            at += len;
+            let m = &mut b.momentum;
+            let cells = off..off + m.u.len();
+            anderson.next_iterate_uncorrected(cells.clone(), &mut m.u);
+            m.update_gradient(&b.mesh, &b.geom);
+            anderson.next_iterate(cells, off, &mut m.u);
+            at_x += iterate_state_len(b);
+            at_f += mixed_state_len(b);
         }
     }
 
@@ -1477,32 +1550,35 @@ struct BodyUpdate {
     inverted: Option<String>,
 }
 
-/// Length of a body's part of the accelerated iterate besides its cells:
-/// boundary values and normal derivatives per boundary face, and the cell
-/// gradient as three columns per cell.
+/// Length of a body's part of the accelerated correction besides its
+/// cells: boundary values and normal derivatives per boundary face, and
+/// the cell gradient as three columns per cell.
 fn mixed_state_len(b: &Body) -> usize {
-    2 * b.momentum.u_b.len() + 3 * b.momentum.grad_u.len()
+    iterate_state_len(b) + 3 * b.momentum.grad_u.len()
 }
 
-/// A body's u_b, n·∇u and cell gradient into `out` ([`mixed_state_len`]);
-/// the gradient as its columns, three vectors per cell.
+/// Length of a body's part of the accelerated iterate besides its cells:
+/// boundary values and normal derivatives per boundary face.
+fn iterate_state_len(b: &Body) -> usize {
+    2 * b.momentum.u_b.len()
+}
+
+/// A body's u_b and n·∇u into `out` ([`iterate_state_len`]).
 fn read_mixed_state(b: &Body, out: &mut [Vector]) {
     let m = &b.momentum;
     let nb = m.u_b.len();
     out[..nb].copy_from_slice(&m.u_b);
     out[nb..2 * nb].copy_from_slice(&m.snd_b);
-    out[2 * nb..].copy_from_slice(gradient_columns(&m.grad_u));
 }
 
-/// The inverse of [`read_mixed_state`]: the body's part `range` of the
-/// next iterate of `anderson`.
-fn write_mixed_state(b: &mut Body, anderson: &AndersonAcceleration, range: Range<usize>) {
+/// The inverse of [`read_mixed_state`]: the body's u_b and n·∇u of the
+/// next iterate of `anderson`, from entry `at_x` of the iterate and
+/// `at_f` of the correction.
+fn write_mixed_state(b: &mut Body, anderson: &AndersonAcceleration, at_x: usize, at_f: usize) {
     let m = &mut b.momentum;
     let nb = m.u_b.len();
-    let s = range.start;
-    anderson.next_iterate(s..s + nb, &mut m.u_b);
-    anderson.next_iterate(s + nb..s + 2 * nb, &mut m.snd_b);
-    anderson.next_iterate(s + 2 * nb..range.end, gradient_columns_mut(&mut m.grad_u));
+    anderson.next_iterate(at_x..at_x + nb, at_f, &mut m.u_b);
+    anderson.next_iterate(at_x + nb..at_x + 2 * nb, at_f + nb, &mut m.snd_b);
 }
 
 // a Tensor is its three columns one after the other, each laid out as a
@@ -1517,12 +1593,6 @@ fn gradient_columns(g: &[Tensor]) -> &[Vector] {
     // SAFETY: a Tensor is three Vectors without padding (asserted above),
     // column j at offset j; `g` is 3 len() Vectors for its lifetime
     unsafe { std::slice::from_raw_parts(g.as_ptr().cast::<Vector>(), 3 * g.len()) }
-}
-
-/// [`gradient_columns`], mutably.
-fn gradient_columns_mut(g: &mut [Tensor]) -> &mut [Vector] {
-    // SAFETY: as in `gradient_columns`, borrowed mutably
-    unsafe { std::slice::from_raw_parts_mut(g.as_mut_ptr().cast::<Vector>(), 3 * g.len()) }
 }
 
 /// Boundary values, gradient and stress, and force residual of one body

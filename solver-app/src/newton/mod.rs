@@ -83,12 +83,6 @@ pub struct NewtonKrylovSolver {
     x: Vec<f64>,
     /// Start and end time of the step being solved.
     step_times: (f64, f64),
-    /// `[solver] predictor = "linear"`: the last converged step's change,
-    /// scaled to the step, is a candidate first iterate.
-    extrapolate: bool,
-    /// The change of the state over the last converged step (empty before
-    /// the first) and that step's length.
-    previous_step: (Vec<f64>, f64),
     cell_size: f64,
     stiffness_area: f64,
     /// What the solver chose during the run, for the log.
@@ -166,8 +160,6 @@ impl NewtonKrylovSolver {
             },
             x: vec![0.0; n],
             step_times: (0.0, 0.0),
-            extrapolate: settings.predictor == crate::case::Predictor::Linear,
-            previous_step: (Vec::new(), 0.0),
             cell_size: mean_cell_size(bodies),
             stiffness_area: stiffness_area(bodies),
             notes,
@@ -183,7 +175,6 @@ impl NewtonKrylovSolver {
             + self.operator.memory_bytes()
             + self.jacobian.as_ref().map_or(0, |j| j.memory_bytes())
             + 8 * 2 * self.x.len()
-            + 8 * self.previous_step.0.len()
     }
 
     /// The numbering of the state.
@@ -451,9 +442,6 @@ impl crate::nonlinear_solver::NonlinearSolver for NewtonKrylovSolver {
         info.converged = outcome?;
         if info.converged {
             contacts.commit_increment();
-            let (t0, t1) = self.step_times;
-            self.previous_step.0.clone_from(&self.x);
-            self.previous_step.1 = t1 - t0;
         }
         Ok(info)
     }

@@ -37,38 +37,6 @@ impl NewtonKrylovSolver {
         if predicted || moved {
             self.admissible_start(bodies, contacts);
         }
-        if !moved {
-            self.extrapolated_start(bodies, contacts);
-        }
-    }
-
-    /// `[solver] predictor = "linear"`: the last converged step's change,
-    /// scaled to this step's length, replaces the first iterate where its
-    /// residual is smaller. In a steady process (a wire drawn through a
-    /// die) the last step is the better guess: the tangent of a state
-    /// whose cells sit on the yield surface is the elastic one in some
-    /// directions and the plastic one in others, and its first iterate
-    /// started the coarse wire drawing's increments at relative residuals
-    /// of 0.1–0.3 (see docs/newton-krylov.md).
-    fn extrapolated_start(&mut self, bodies: &mut [Body], contacts: &mut ContactSet) {
-        let (t0, t1) = self.step_times;
-        let (previous, dt) = &self.previous_step;
-        if !self.extrapolate || previous.len() != self.x.len() || !(*dt > 0.0) {
-            return;
-        }
-        let ratio = (t1 - t0) / dt;
-        let candidate: Vec<f64> = previous.iter().map(|v| v * ratio).collect();
-        let mut f = vec![0.0; candidate.len()];
-        let x = std::mem::take(&mut self.x);
-        let (current, extrapolated) = {
-            let mut problem = self.problem(bodies, contacts);
-            let mut norm_at = |x: &[f64]| match problem.residual(x, &mut f, Frozen::Renew) {
-                Ok(()) => fv_nonlinear::vector_ops::norm(&f),
-                Err(_) => f64::INFINITY,
-            };
-            (norm_at(&x), norm_at(&candidate))
-        };
-        self.x = if extrapolated < current { candidate } else { x };
     }
 
     /// A body held by nothing but one rigid-motion patch, under the

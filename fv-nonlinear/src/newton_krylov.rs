@@ -618,6 +618,7 @@ impl NewtonKrylov {
                         // the residual of a new active set starts a new
                         // window (the watchdog keeps its count)
                         history.restart_window();
+                        report.discontinuity = true;
                     }
                     accepted = true;
                     fnorm = trial;

@@ -187,11 +187,19 @@ fn penalty_contact_active_set_settles_in_a_few_newton_iterations() {
         tolerance: 1e-8,
         ..Default::default()
     };
+    let mut flagged = 0;
     let info = NewtonKrylov::new(n, params)
-        .solve(&mut p, &mut x, &mut |_| std::ops::ControlFlow::Continue(()))
+        .solve(&mut p, &mut x, &mut |r| {
+            flagged += usize::from(r.discontinuity);
+            std::ops::ControlFlow::Continue(())
+        })
         .unwrap();
     assert!(info.converged, "{info:?}");
     assert!(info.iterations <= 25, "{info:?}");
+    // the steps taken across a change of the active set whatever their
+    // residual are the ones the iteration reports (and FVC_TRACE marks)
+    assert!(info.discontinuity_steps > 0, "{info:?}");
+    assert_eq!(flagged, info.discontinuity_steps, "{info:?}");
     // the free chain sags to a parabola of depth load n²/8 ≈ 64 > 20: the
     // middle rests on the obstacle, penetrating by about load/penalty
     let mid = n / 2;

@@ -110,9 +110,10 @@ pub fn solver_report(case: &Case) -> String {
             };
             let _ = write!(
                 out,
-                " (residual relative to the cells' force scale); at most {} Newton iterations per attempt{last}; GMRES({}) to Eisenstat–Walker forcing terms ≤ {}, preconditioner \"{}\"; a failed step is cut back up to four times",
+                " (residual relative to the cells' force scale); at most {} Newton iterations per attempt{last}; GMRES({}) to Eisenstat–Walker forcing terms ≤ {}, preconditioner \"{}\"; a failed step is cut back up to four times; first iterate: the linearised response to the step (`predictor` is the segregated method's)",
                 s.max_outer, s.linear.restart, s.linear.tolerance, s.linear.preconditioner
             );
+            return out;
         }
         NonlinearMethod::Segregated => {
             let _ = write!(

@@ -181,20 +181,6 @@ fn put<T: H5Type>(
     Ok(())
 }
 
-/// `write()` if `fields` holds the dataset `name` (every name that is not
-/// a [`Field`]'s is written).
-fn written(
-    fields: FieldSet,
-    name: &str,
-    write: impl FnOnce() -> Result<(), OutputError>,
-) -> Result<(), OutputError> {
-    if fields.holds_name(name) {
-        write()
-    } else {
-        Ok(())
-    }
-}
-
 /// [`put`] for a field's values, stored in `precision`, with the
 /// attribute `location` given ([`super::datasets::create_field`]).
 #[allow(clippy::too_many_arguments)]
@@ -634,9 +620,9 @@ impl ResultsWriter {
             .iter()
             .map(|p| self.patch_index(l, bi, p))
             .collect::<Result<Vec<_>, _>>()?;
-        let (pr, fields) = (self.precision, self.fields);
+        let fields = self.fields;
         let field = |g: &Group, gp: &str, name: &str, v: &[f64], shape: &[usize], at| {
-            written(fields, name, || put_field(l, g, gp, name, v, shape, at, pr))
+            self.put_chosen(l, g, gp, name, v, shape, at)
         };
         let state = &self.bodies[bi];
         self.write_zeros(l, state, &indices)?;
@@ -713,6 +699,25 @@ impl ResultsWriter {
         Ok(indices)
     }
 
+    /// [`put_field`] in the writer's precision, if its [`FieldSet`] holds
+    /// the dataset `name` (names that are not a [`Field`]'s always).
+    #[allow(clippy::too_many_arguments)]
+    fn put_chosen(
+        &self,
+        l: &str,
+        g: &Group,
+        gp: &str,
+        name: &str,
+        v: &[f64],
+        shape: &[usize],
+        at: Option<&'static str>,
+    ) -> Result<(), OutputError> {
+        if !self.fields.holds_name(name) {
+            return Ok(());
+        }
+        put_field(l, g, gp, name, v, shape, at, self.precision)
+    }
+
     /// Writes the constant 0 of the XDMF's `plastic_strain` of an elastic
     /// body in the writer's precision, if not yet there, under
     /// `/mesh/<body>/xdmf` and the patches `indices`.
@@ -759,9 +764,9 @@ impl ResultsWriter {
         vm: &[f64],
         indices: &[usize],
     ) -> Result<(), OutputError> {
-        let (pr, fields) = (self.precision, self.fields);
+        let fields = self.fields;
         let field = |g: &Group, gp: &str, name: &str, v: &[f64], shape: &[usize], at| {
-            written(fields, name, || put_field(l, g, gp, name, v, shape, at, pr))
+            self.put_chosen(l, g, gp, name, v, shape, at)
         };
         let state = &self.bodies[bi];
         let nc = state.n_cells;

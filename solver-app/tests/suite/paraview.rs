@@ -88,6 +88,18 @@ const FIELDS: [&str; 8] = [
     "cell/von_mises",
 ];
 
+/// The names of a probed block's arrays (`{"arrays": {…}}`), sorted.
+fn array_names(block: &serde_json::Value) -> Vec<&str> {
+    let mut names: Vec<&str> = block["arrays"]
+        .as_object()
+        .unwrap()
+        .keys()
+        .map(String::as_str)
+        .collect();
+    names.sort();
+    names
+}
+
 /// Smallest and largest value of a dataset.
 fn h5_range(f: &hdf5::File, path: &str) -> (f64, f64) {
     let v = f.dataset(path).unwrap().read_raw::<f64>().unwrap();
@@ -167,13 +179,7 @@ fn default_reader_colours_every_block_by_every_field() {
         .collect();
     assert_eq!(cells, [64, 16, 8, 4]);
     for (i, b) in blocks.iter().enumerate() {
-        let mut names: Vec<&str> = b["arrays"]
-            .as_object()
-            .unwrap()
-            .keys()
-            .map(String::as_str)
-            .collect();
-        names.sort();
+        let names = array_names(b);
         assert_eq!(names, FIELDS, "block {i}");
         for field in FIELDS {
             // (VTK's range skips NaN: the gap of cells off the patches)
@@ -216,13 +222,7 @@ fn default_reader_colours_every_block_by_every_field() {
 
     // MergeBlocks keeps every field, over all blocks
     let merged = serde_json::json!({ "arrays": v["merged"] });
-    let mut names: Vec<&str> = v["merged"]
-        .as_object()
-        .unwrap()
-        .keys()
-        .map(String::as_str)
-        .collect();
-    names.sort();
+    let names = array_names(&merged);
     assert_eq!(names, FIELDS);
     let (base, punch) = (
         h5_range(&f, &format!("{t}/base/von_mises")),
@@ -252,13 +252,7 @@ fn default_reader_colours_every_block_by_the_fields_chosen() {
         .chain([&serde_json::json!({ "arrays": v["merged"] })])
         .enumerate()
     {
-        let mut names: Vec<&str> = b["arrays"]
-            .as_object()
-            .unwrap()
-            .keys()
-            .map(String::as_str)
-            .collect();
-        names.sort();
+        let names = array_names(b);
         assert_eq!(names, kept, "block {i} (4: merged)");
     }
     let vm = h5_range(&f, "/time/2/base/von_mises");

@@ -74,6 +74,25 @@ pub fn mesh_report(case: &Case, bodies: &[Body]) -> String {
     s
 }
 
+/// One line per contact: its surfaces and the normal penalty scale, with
+/// why it is that (`fvc check` and the run's log).
+pub fn contact_report(contacts: &crate::contact_coupling::ContactSet) -> Vec<String> {
+    contacts
+        .interfaces
+        .iter()
+        .enumerate()
+        .map(|(i, c)| {
+            format!(
+                "contact[{i}] {} on {}: penalty_scale {} ({})",
+                c.slave_name,
+                c.master_name,
+                c.penalty_scale.value(),
+                c.penalty_scale.reason()
+            )
+        })
+        .collect()
+}
+
 /// The nonlinear method and the settings it chose, and why (`fvc check`
 /// and the first lines of a run's log).
 pub fn solver_report(case: &Case) -> String {

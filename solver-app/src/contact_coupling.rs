@@ -21,8 +21,11 @@ use contact_force::{
 use fv_discretise::{LinearisedContact, PatchCondition};
 use fv_mesh::{CellToPoint, Surface, Vector};
 
+mod penalty_scale;
 mod restart;
 mod state_evaluation;
+
+pub use penalty_scale::{PenaltyScale, RIGID_PLANE_PENALTY_SCALE};
 
 /// Fraction of a face's previous linearisation contact fraction kept when
 /// the face opens against a rigid body (see [`ContactSide::beta`]):
@@ -390,6 +393,8 @@ pub struct ContactInterface {
     pub master: ContactSide,
     /// Slave side.
     pub slave: ContactSide,
+    /// The normal penalty scale and why (given or chosen).
+    pub penalty_scale: PenaltyScale,
     detector: Box<dyn Detector + Send>,
     pairs: CandidatePairs,
     /// The last detection (Newton–Krylov: `pairs` is the union of the
@@ -918,8 +923,16 @@ impl ContactSet {
                 (!bodies[mb].rigid).then(|| surface_material(&bodies[mb], &master.surface)),
                 (!bodies[sb].rigid).then(|| surface_material(&bodies[sb], &slave.surface)),
             ];
+            let stiff_ok =
+                case.solver.nonlinear == fv_nonlinear::NonlinearMethod::NewtonKrylov || implicit;
+            let penalty_scale = PenaltyScale::choose(
+                c.penalty_scale,
+                (&bodies[mb], mp),
+                (&bodies[sb], sp),
+                stiff_ok,
+            );
             let params = PenaltyParams {
-                penalty_scale: c.penalty_scale,
+                penalty_scale: penalty_scale.value(),
                 tangential_penalty_scale: c.tangential_penalty_scale,
                 friction: c.friction.at(0.0),
                 slip_history: c.slip_history,
@@ -958,6 +971,7 @@ impl ContactSet {
                 master_name: format!("{}/{}", c.master.0, c.master.1),
                 master,
                 slave,
+                penalty_scale,
                 detector,
                 pairs: CandidatePairs::new(),
                 detected: CandidatePairs::new(),

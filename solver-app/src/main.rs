@@ -128,6 +128,9 @@ fn main() -> ExitCode {
                     let mesh = solver_app::check::mesh_report(&case, &bodies);
                     stdout_line(mesh.trim_end_matches('\n'));
                     stdout_line(&solver_app::check::solver_report(&case));
+                    for line in solver_app::check::contact_report(&contacts) {
+                        stdout_line(&line);
+                    }
                     // the report is the result (standard output); notes
                     // are diagnostics (standard error), as under `fvc run`
                     for n in bodies.iter().flat_map(|b| &b.setup_notes) {

@@ -295,6 +295,9 @@ fn run_case_noting(
         count(case.time.steps, "increment", "increments")
     ));
     log.info(&crate::check::solver_report(case));
+    for line in crate::check::contact_report(&contacts) {
+        log.info(&line);
+    }
     if let Some(from) = &opts.restart {
         log.info(&format!(
             "continued from increment {} (t = {}) of {}; later increments of the results are replaced",

@@ -134,8 +134,10 @@ pub struct ContactSpec {
     pub algorithm: ContactAlgorithm,
     /// Coupling of the two bodies.
     pub coupling: Coupling,
-    /// Normal penalty scale f_n^scale of eq. 4.4a (> 0, default 1).
-    pub penalty_scale: f64,
+    /// Normal penalty scale f_n^scale of eq. 4.4a (> 0); `None` when the
+    /// case does not give it: then
+    /// [`crate::contact_coupling::PenaltyScale::choose`] chooses.
+    pub penalty_scale: Option<f64>,
     /// Coulomb friction coefficient μ (>= 0, default 0): a constant or a
     /// time table `{ table = [[t, μ], ...] }`, evaluated at the end time of
     /// each increment (e.g. frictionless indentation, then twisting with
@@ -236,7 +238,7 @@ pub(crate) fn contact(node: &Node<'_>, bodies: &[&str]) -> Res<ContactSpec> {
         coupling: t.opt("coupling", Coupling::Explicit, |n| {
             n.choice("coupling", &COUPLINGS)
         })?,
-        penalty_scale: t.opt("penalty_scale", 1.0, |n| n.positive())?,
+        penalty_scale: t.opt("penalty_scale", None, |n| n.positive().map(Some))?,
         friction: t.opt("friction", ScalarValue::Constant(0.0), friction)?,
         tangential_penalty_scale: t.opt("tangential_penalty_scale", 1.0, |n| n.positive())?,
         relaxation_normal,

@@ -893,7 +893,7 @@ material = { model = "linear-elastic", E = 1, nu = 0.3 }
             slave: ("cyl".into(), "curved".into()),
             algorithm: ContactAlgorithm::SegmentToSegment,
             coupling: Coupling::Explicit,
-            penalty_scale: 1.0,
+            penalty_scale: None,
             friction: ScalarValue::Constant(0.0),
             tangential_penalty_scale: 1.0,
             relaxation_normal: 0.1,
@@ -933,7 +933,7 @@ algorithm = "pointwise"
     assert_eq!(k.coupling, Coupling::Implicit);
     assert_eq!(
         (k.penalty_scale, &k.friction, k.tangential_penalty_scale),
-        (2.0, &ScalarValue::Constant(0.3), 0.5)
+        (Some(2.0), &ScalarValue::Constant(0.3), 0.5)
     );
     assert_eq!((k.relaxation_normal, k.relaxation_tangential), (0.2, 1.0));
     assert_eq!(k.detection, Detection::Bvh);

@@ -540,7 +540,7 @@ fn case_format_example_parses_with_stated_values() {
             slave: ("cylinder".into(), "curved".into()),
             algorithm: ContactAlgorithm::SegmentToSegment,
             coupling: Coupling::Explicit,
-            penalty_scale: 1.0,
+            penalty_scale: Some(1.0),
             friction: solver_app::case::ScalarValue::Constant(0.0),
             tangential_penalty_scale: 1.0,
             relaxation_normal: 0.1,

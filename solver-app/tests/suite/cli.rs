@@ -1454,3 +1454,36 @@ value = [1, 0, 0]
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("is not held in the"), "{err}");
 }
+
+/// `check` prints each contact's normal penalty scale and why: 5 for the
+/// example's curved cylinder on its rigid flat (not given), 1 for a flat
+/// block face under a rigid plate (a conforming contact, not given), and
+/// the case's own value when given.
+#[test]
+fn check_reports_the_penalty_scale_of_each_contact_and_why() {
+    let example =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/hertz-cylinder/case.toml");
+    let (code, out, err) = fvc(&["check", example.to_str().unwrap()]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(
+        out.contains("contact[0] cylinder/contact on flat/ymax: penalty_scale 5 (not given; a curved surface on a rigid plane)"),
+        "{out}"
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let plate = format!("{GOOD}{RIGID_PLATE}")
+        + "[[contact]]\nmaster = \"plate/ymin\"\nslave = \"block/xmax\"\n";
+    let p = write(dir.path(), "case.toml", plate.as_bytes());
+    let (code, out, err) = fvc(&["check", p.to_str().unwrap()]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(
+        out.contains(
+            "contact[0] block/xmax on plate/ymin: penalty_scale 1 (not given; the thesis's)"
+        ),
+        "{out}"
+    );
+    let given = plate + "penalty_scale = 2.5\n";
+    let p = write(dir.path(), "case.toml", given.as_bytes());
+    let (code, out, err) = fvc(&["check", p.to_str().unwrap()]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(out.contains("penalty_scale 2.5 (given)"), "{out}");
+}

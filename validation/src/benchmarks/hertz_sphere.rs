@@ -70,7 +70,13 @@ pub struct SphereRun {
 
 /// Runs the case with the rigid flat as master or (`swapped`) as slave.
 pub fn run(swapped: bool) -> SphereRun {
-    let (dir, mut text) = read_case("hertz-sphere", "case.toml");
+    run_edited(swapped, |text| text)
+}
+
+/// [`run`] with the case text changed by `edit` first (settings probed).
+pub fn run_edited(swapped: bool, edit: impl Fn(String) -> String) -> SphereRun {
+    let (dir, text) = read_case("hertz-sphere", "case.toml");
+    let mut text = edit(text);
     if swapped {
         text = swap_master_slave(&text, "flat/ymax", "sphere/curved");
     }

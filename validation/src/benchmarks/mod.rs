@@ -181,7 +181,7 @@ impl CouplingSettings {
         } else {
             Coupling::Explicit
         };
-        c.penalty_scale = self.penalty_scale;
+        c.penalty_scale = Some(self.penalty_scale);
         c.relaxation_normal = self.relaxation;
         c.relaxation_tangential = self.relaxation;
         c.face_position = self.face_position;

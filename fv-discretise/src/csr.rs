@@ -424,6 +424,132 @@ impl CsrMatrix {
         }
     }
 
+    /// `rhs_i − Σ_{j<i} a_ij w_j`: the forward sweep of a factor whose
+    /// strict lower triangle is `A`'s own (DIC), with `w_prev = w[i − 1]`
+    /// passed in a register and applied last, in the order of
+    /// [`SplitFactor::forward_row`] (so the two agree to the bit when the
+    /// factor's lower triangle holds `A`'s values).
+    ///
+    /// # Panics
+    /// If `i >= n` or `w.len() != n`.
+    #[inline(always)]
+    pub(crate) fn forward_row_of_lower(&self, i: usize, rhs_i: f64, w: &[f64], w_prev: f64) -> f64 {
+        assert!(
+            i < self.n && w.len() == self.n,
+            "forward_row_of_lower: index or length out of range"
+        );
+        // SAFETY: i < n indexes row_ptr and diag; row_ptr[i] <= diag[i] <
+        // row_ptr[i + 1] <= col_idx.len() == values.len(), and every column
+        // index is < n == w.len() (type invariants).
+        unsafe {
+            let s = *self.row_ptr.get_unchecked(i) as usize;
+            let d = *self.diag.get_unchecked(i) as usize;
+            if s == d {
+                return rhs_i;
+            }
+            let t = rhs_i - dot_unchecked(&self.col_idx, &self.values, s, d - 1, w);
+            let c = *self.col_idx.get_unchecked(d - 1) as usize;
+            let wc = if c + 1 == i {
+                w_prev
+            } else {
+                *w.get_unchecked(c)
+            };
+            t - *self.values.get_unchecked(d - 1) * wc
+        }
+    }
+
+    /// `w_i − Σ_{j>i} (scale · a_ij) z_j`: the backward sweep of a factor
+    /// whose strict upper triangle is `A`'s own scaled by `scale` (DIC:
+    /// `1/d̃_i`), with `z_next = z[i + 1]` passed in a register and applied
+    /// last, in the order of [`SplitFactor::backward_row`].
+    ///
+    /// # Panics
+    /// If `i >= n` or `z.len() != n`.
+    #[inline(always)]
+    pub(crate) fn backward_row_of_upper(
+        &self,
+        i: usize,
+        w_i: f64,
+        scale: f64,
+        z: &[f64],
+        z_next: f64,
+    ) -> f64 {
+        assert!(
+            i < self.n && z.len() == self.n,
+            "backward_row_of_upper: index or length out of range"
+        );
+        // SAFETY: as in `forward_row_of_lower`; the upper part of row i is
+        // diag[i] + 1..row_ptr[i + 1].
+        unsafe {
+            let s = *self.diag.get_unchecked(i) as usize + 1;
+            let e = *self.row_ptr.get_unchecked(i + 1) as usize;
+            if s == e {
+                return w_i;
+            }
+            let mut sum = 0.0;
+            for k in s + 1..e {
+                let c = *self.col_idx.get_unchecked(k) as usize;
+                sum += scale * *self.values.get_unchecked(k) * *z.get_unchecked(c);
+            }
+            let t = w_i - sum;
+            let c = *self.col_idx.get_unchecked(s) as usize;
+            let zc = if c == i + 1 {
+                z_next
+            } else {
+                *z.get_unchecked(c)
+            };
+            t - scale * *self.values.get_unchecked(s) * zc
+        }
+    }
+
+    /// Whether the matrix is symmetric in pattern and values, to the bit.
+    pub fn is_symmetric(&self) -> bool {
+        let mut lower = 0usize;
+        for i in 0..self.n {
+            let (s, d) = (self.row_ptr[i] as usize, self.diag[i] as usize);
+            lower += d - s;
+            for k in s..d {
+                let j = self.col_idx[k] as usize;
+                match self.entry_index(j, i) {
+                    Some(kt) if self.values[kt].to_bits() == self.values[k].to_bits() => {}
+                    _ => return false,
+                }
+            }
+        }
+        // every lower entry has its transpose: the pattern is symmetric when
+        // the upper triangle has no more entries
+        2 * lower + self.n == self.nnz()
+    }
+
+    /// Whether the graph of the pattern (rows as vertices, off-diagonal
+    /// entries as edges) has no triangle: no three rows each coupled to the
+    /// other two. On such a graph IC(0) drops no fill from its off-diagonal
+    /// entries (rows i and j > i share no third row), so its strict lower
+    /// triangle is `A`'s own ([`crate::pcg_ic0`]). Structured hexahedral
+    /// meshes (the 7-point face graph) have none; tetrahedral and polyhedral
+    /// ones do. Reads the lower triangle only (a symmetric pattern).
+    pub fn is_triangle_free(&self) -> bool {
+        for i in 0..self.n {
+            let (s, d) = (self.row_ptr[i] as usize, self.diag[i] as usize);
+            let lower_i = &self.col_idx[s..d];
+            for &j in lower_i {
+                let j = j as usize;
+                let (sj, dj) = (self.row_ptr[j] as usize, self.diag[j] as usize);
+                // a common column c < j of rows i and j closes a triangle
+                let lower_j = &self.col_idx[sj..dj];
+                let (mut p, mut q) = (0, 0);
+                while p < lower_i.len() && q < lower_j.len() && (lower_i[p] as usize) < j {
+                    match lower_i[p].cmp(&lower_j[q]) {
+                        std::cmp::Ordering::Equal => return false,
+                        std::cmp::Ordering::Less => p += 1,
+                        std::cmp::Ordering::Greater => q += 1,
+                    }
+                }
+            }
+        }
+        true
+    }
+
     /// Smallest column index of row `i` (rows are never empty: the diagonal is always stored).
     ///
     /// # Panics
@@ -1079,6 +1205,36 @@ pub(crate) mod test_util {
 mod tests {
     use super::test_util::*;
     use super::*;
+
+    /// A 4-cycle has no triangle, a 4-cycle with a chord has two, a 3-D
+    /// grid none; symmetry is to the bit and in the pattern.
+    #[test]
+    fn triangles_and_symmetry_of_the_pattern() {
+        let ring = |chord: bool| {
+            let mut t = vec![(0, 0, 4.0), (1, 1, 4.0), (2, 2, 4.0), (3, 3, 4.0)];
+            let mut edges = vec![(0, 1), (1, 2), (2, 3), (0, 3)];
+            if chord {
+                edges.push((0, 2));
+            }
+            for (i, j) in edges {
+                t.push((i, j, -1.0));
+                t.push((j, i, -1.0));
+            }
+            CsrMatrix::from_triplets(4, &t).unwrap()
+        };
+        assert!(ring(false).is_triangle_free());
+        assert!(!ring(true).is_triangle_free());
+        let grid = laplacian(5, 4, 3, 0.1);
+        assert!(grid.is_triangle_free() && grid.is_symmetric());
+        let mut skew = grid.clone();
+        let k = skew.entry_index(7, 6).unwrap();
+        skew.values_mut()[k] = skew.values()[k].next_up();
+        assert!(!skew.is_symmetric());
+        let one_sided =
+            CsrMatrix::from_triplets(2, &[(0, 0, 1.0), (1, 1, 1.0), (1, 0, 0.0)]).unwrap();
+        assert_eq!(one_sided.max_asymmetry(), 0.0);
+        assert!(!one_sided.is_symmetric());
+    }
 
     #[test]
     fn from_faces_pattern_and_slots() {

@@ -424,40 +424,6 @@ impl CsrMatrix {
         }
     }
 
-    /// `rhs_i − Σ_{j<i} a_ij w_j`: the forward sweep of a factor whose
-    /// strict lower triangle is `A`'s own (DIC), with `w_prev = w[i − 1]`
-    /// passed in a register and applied last, in the order of
-    /// [`SplitFactor::forward_row`] (so the two agree to the bit when the
-    /// factor's lower triangle holds `A`'s values).
-    ///
-    /// # Panics
-    /// If `i >= n` or `w.len() != n`.
-    #[inline(always)]
-    pub(crate) fn forward_row_of_lower(&self, i: usize, rhs_i: f64, w: &[f64], w_prev: f64) -> f64 {
-        assert!(
-            i < self.n && w.len() == self.n,
-            "forward_row_of_lower: index or length out of range"
-        );
-        // SAFETY: i < n indexes row_ptr and diag; row_ptr[i] <= diag[i] <
-        // row_ptr[i + 1] <= col_idx.len() == values.len(), and every column
-        // index is < n == w.len() (type invariants).
-        unsafe {
-            let s = *self.row_ptr.get_unchecked(i) as usize;
-            let d = *self.diag.get_unchecked(i) as usize;
-            if s == d {
-                return rhs_i;
-            }
-            let t = rhs_i - dot_unchecked(&self.col_idx, &self.values, s, d - 1, w);
-            let c = *self.col_idx.get_unchecked(d - 1) as usize;
-            let wc = if c + 1 == i {
-                w_prev
-            } else {
-                *w.get_unchecked(c)
-            };
-            t - *self.values.get_unchecked(d - 1) * wc
-        }
-    }
-
     /// `w_i − Σ_{j>i} (scale · a_ij) z_j`: the backward sweep of a factor
     /// whose strict upper triangle is `A`'s own scaled by `scale` (DIC:
     /// `1/d̃_i`), with `z_next = z[i + 1]` passed in a register and applied
@@ -478,8 +444,10 @@ impl CsrMatrix {
             i < self.n && z.len() == self.n,
             "backward_row_of_upper: index or length out of range"
         );
-        // SAFETY: as in `forward_row_of_lower`; the upper part of row i is
-        // diag[i] + 1..row_ptr[i + 1].
+        // SAFETY: i < n indexes row_ptr and diag; diag[i] < row_ptr[i + 1] <=
+        // col_idx.len() == values.len(), so the upper part of row i,
+        // diag[i] + 1..row_ptr[i + 1], lies within them, and every column
+        // index is < n == z.len() (type invariants).
         unsafe {
             let s = *self.diag.get_unchecked(i) as usize + 1;
             let e = *self.row_ptr.get_unchecked(i + 1) as usize;
@@ -500,6 +468,20 @@ impl CsrMatrix {
             };
             t - scale * *self.values.get_unchecked(s) * zc
         }
+    }
+
+    /// The diagonal entry of row `i` and its upper part (columns, values).
+    ///
+    /// # Panics
+    /// If `i >= n`.
+    #[inline(always)]
+    #[allow(clippy::type_complexity)]
+    pub(crate) fn diagonal_and_upper(&self, i: usize) -> (f64, (&[u32], &[f64])) {
+        let (d, e) = (self.diag[i] as usize, self.row_ptr[i + 1] as usize);
+        (
+            self.values[d],
+            (&self.col_idx[d + 1..e], &self.values[d + 1..e]),
+        )
     }
 
     /// Whether the matrix is symmetric in pattern and values, to the bit.
@@ -759,6 +741,51 @@ impl Default for TriCsr {
 }
 
 impl TriCsr {
+    /// Sets the triangle to `a`'s strict lower triangle, pattern and values
+    /// (reusing the buffers; allocates nothing when the sizes are unchanged).
+    pub(crate) fn set_lower_of(&mut self, a: &CsrMatrix) {
+        let n = a.n();
+        let (rp, ci, dg, av) = (a.row_ptr(), a.col_idx(), a.diag_index(), a.values());
+        self.reset(n);
+        self.val.clear();
+        for i in 0..n {
+            let (s, d) = (rp[i] as usize, dg[i] as usize);
+            self.col.extend_from_slice(&ci[s..d]);
+            self.val.extend_from_slice(&av[s..d]);
+            self.ptr.push(self.col.len() as u32);
+        }
+    }
+
+    /// Forward-sweep row `i`: `rhs_i − Σ_j val_ij w_j`, with
+    /// `w_prev = w[i − 1]` passed in a register and applied last (the
+    /// loop-carried dependency chain is one multiply and one subtraction).
+    ///
+    /// # Panics
+    /// If `i >= n` or `w.len() != n`.
+    #[inline(always)]
+    pub(crate) fn forward_row(&self, i: usize, rhs_i: f64, w: &[f64], w_prev: f64) -> f64 {
+        assert!(
+            i + 1 < self.ptr.len() && w.len() + 1 == self.ptr.len(),
+            "forward_row: out of range"
+        );
+        // SAFETY: i < n, and by the TriCsr invariants the row range lies within
+        // col/val and every column index is < n == w.len().
+        unsafe {
+            let (s, e) = self.range_unchecked(i);
+            if s == e {
+                return rhs_i;
+            }
+            let t = rhs_i - dot_unchecked(&self.col, &self.val, s, e - 1, w);
+            let c = *self.col.get_unchecked(e - 1) as usize;
+            let wc = if c + 1 == i {
+                w_prev
+            } else {
+                *w.get_unchecked(c)
+            };
+            t - *self.val.get_unchecked(e - 1) * wc
+        }
+    }
+
     /// Column indices and values of row `i` (for tests).
     #[cfg(test)]
     pub(crate) fn row(&self, i: usize) -> (&[u32], &[f64]) {
@@ -923,27 +950,7 @@ impl SplitFactor {
     /// If `i >= n` or `w.len() != n`.
     #[inline(always)]
     pub(crate) fn forward_row(&self, i: usize, rhs_i: f64, w: &[f64], w_prev: f64) -> f64 {
-        let lo = &self.lower;
-        assert!(
-            i < self.inv_diag.len() && w.len() == self.inv_diag.len(),
-            "forward_row: out of range"
-        );
-        // SAFETY: i < n, and by the TriCsr invariants the row range lies within
-        // col/val and every column index is < n == w.len().
-        unsafe {
-            let (s, e) = lo.range_unchecked(i);
-            if s == e {
-                return rhs_i;
-            }
-            let t = rhs_i - dot_unchecked(&lo.col, &lo.val, s, e - 1, w);
-            let c = *lo.col.get_unchecked(e - 1) as usize;
-            let wc = if c + 1 == i {
-                w_prev
-            } else {
-                *w.get_unchecked(c)
-            };
-            t - *lo.val.get_unchecked(e - 1) * wc
-        }
+        self.lower.forward_row(i, rhs_i, w, w_prev)
     }
 
     /// `z = (I + U_b)⁻¹ D⁻¹ (D + L_f)⁻¹ D r`: one forward and one backward

@@ -598,6 +598,19 @@ impl SolidMomentum {
         }
     }
 
+    /// The cell displacement recorded by the last [`Self::save_start`]
+    /// (the start of the current attempt at an increment), and the current
+    /// one to update (the segregated solver measures the increment's
+    /// displacement against it rather than keeping a copy, 24 B per cell).
+    pub fn u_and_start_mut(&mut self) -> (&mut [Vector], &[Vector]) {
+        (&mut self.u, &self.saved.0)
+    }
+
+    /// The cell displacement recorded by the last [`Self::save_start`].
+    pub fn u_start(&self) -> &[Vector] {
+        &self.saved.0
+    }
+
     /// Records the fields at the start of an attempt at an increment.
     pub fn save_start(&mut self) {
         self.saved.0.copy_from_slice(&self.u);

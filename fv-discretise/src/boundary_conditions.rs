@@ -262,7 +262,7 @@ fn check_wedge_shape(
         let n = geom.face_normal(f);
         let a = on_plane_a(&n);
         let (plane_n, plane_x) = if a { (na, xa) } else { (nb, xb) };
-        let size = geom.face_mag[f].sqrt();
+        let size = geom.face_mag(f).sqrt();
         let off_plane = (geom.face_centres[f] - plane_x).dot(&plane_n).abs();
         if (n - plane_n).norm() > WEDGE_SHAPE_TOLERANCE || off_plane > WEDGE_SHAPE_TOLERANCE * size
         {
@@ -306,7 +306,7 @@ fn check_wedge_shape(
         };
         // plane b onto plane a: the rotation by the whole wedge angle
         let image = pivot + ra * rb.transpose() * (geom.face_centres[fb] - pivot);
-        let size = geom.face_mag[fa].sqrt();
+        let size = geom.face_mag(fa).sqrt();
         if (geom.face_centres[fa] - image).norm() > WEDGE_SHAPE_TOLERANCE * size {
             return Err((
                 first,

@@ -424,6 +424,114 @@ impl CsrMatrix {
         }
     }
 
+    /// `w_i − Σ_{j>i} (scale · a_ij) z_j`: the backward sweep of a factor
+    /// whose strict upper triangle is `A`'s own scaled by `scale` (DIC:
+    /// `1/d̃_i`), with `z_next = z[i + 1]` passed in a register and applied
+    /// last, in the order of [`SplitFactor::backward_row`].
+    ///
+    /// # Panics
+    /// If `i >= n` or `z.len() != n`.
+    #[inline(always)]
+    pub(crate) fn backward_row_of_upper(
+        &self,
+        i: usize,
+        w_i: f64,
+        scale: f64,
+        z: &[f64],
+        z_next: f64,
+    ) -> f64 {
+        assert!(
+            i < self.n && z.len() == self.n,
+            "backward_row_of_upper: index or length out of range"
+        );
+        // SAFETY: i < n indexes row_ptr and diag; diag[i] < row_ptr[i + 1] <=
+        // col_idx.len() == values.len(), so the upper part of row i,
+        // diag[i] + 1..row_ptr[i + 1], lies within them, and every column
+        // index is < n == z.len() (type invariants).
+        unsafe {
+            let s = *self.diag.get_unchecked(i) as usize + 1;
+            let e = *self.row_ptr.get_unchecked(i + 1) as usize;
+            if s == e {
+                return w_i;
+            }
+            let mut sum = 0.0;
+            for k in s + 1..e {
+                let c = *self.col_idx.get_unchecked(k) as usize;
+                sum += scale * *self.values.get_unchecked(k) * *z.get_unchecked(c);
+            }
+            let t = w_i - sum;
+            let c = *self.col_idx.get_unchecked(s) as usize;
+            let zc = if c == i + 1 {
+                z_next
+            } else {
+                *z.get_unchecked(c)
+            };
+            t - scale * *self.values.get_unchecked(s) * zc
+        }
+    }
+
+    /// The diagonal entry of row `i` and its upper part (columns, values).
+    ///
+    /// # Panics
+    /// If `i >= n`.
+    #[inline(always)]
+    #[allow(clippy::type_complexity)]
+    pub(crate) fn diagonal_and_upper(&self, i: usize) -> (f64, (&[u32], &[f64])) {
+        let (d, e) = (self.diag[i] as usize, self.row_ptr[i + 1] as usize);
+        (
+            self.values[d],
+            (&self.col_idx[d + 1..e], &self.values[d + 1..e]),
+        )
+    }
+
+    /// Whether the matrix is symmetric in pattern and values, to the bit.
+    pub fn is_symmetric(&self) -> bool {
+        let mut lower = 0usize;
+        for i in 0..self.n {
+            let (s, d) = (self.row_ptr[i] as usize, self.diag[i] as usize);
+            lower += d - s;
+            for k in s..d {
+                let j = self.col_idx[k] as usize;
+                match self.entry_index(j, i) {
+                    Some(kt) if self.values[kt].to_bits() == self.values[k].to_bits() => {}
+                    _ => return false,
+                }
+            }
+        }
+        // every lower entry has its transpose: the pattern is symmetric when
+        // the upper triangle has no more entries
+        2 * lower + self.n == self.nnz()
+    }
+
+    /// Whether the graph of the pattern (rows as vertices, off-diagonal
+    /// entries as edges) has no triangle: no three rows each coupled to the
+    /// other two. On such a graph IC(0) drops no fill from its off-diagonal
+    /// entries (rows i and j > i share no third row), so its strict lower
+    /// triangle is `A`'s own ([`crate::pcg_ic0`]). Structured hexahedral
+    /// meshes (the 7-point face graph) have none; tetrahedral and polyhedral
+    /// ones do. Reads the lower triangle only (a symmetric pattern).
+    pub fn is_triangle_free(&self) -> bool {
+        for i in 0..self.n {
+            let (s, d) = (self.row_ptr[i] as usize, self.diag[i] as usize);
+            let lower_i = &self.col_idx[s..d];
+            for &j in lower_i {
+                let j = j as usize;
+                let (sj, dj) = (self.row_ptr[j] as usize, self.diag[j] as usize);
+                // a common column c < j of rows i and j closes a triangle
+                let lower_j = &self.col_idx[sj..dj];
+                let (mut p, mut q) = (0, 0);
+                while p < lower_i.len() && q < lower_j.len() && (lower_i[p] as usize) < j {
+                    match lower_i[p].cmp(&lower_j[q]) {
+                        std::cmp::Ordering::Equal => return false,
+                        std::cmp::Ordering::Less => p += 1,
+                        std::cmp::Ordering::Greater => q += 1,
+                    }
+                }
+            }
+        }
+        true
+    }
+
     /// Smallest column index of row `i` (rows are never empty: the diagonal is always stored).
     ///
     /// # Panics
@@ -633,6 +741,51 @@ impl Default for TriCsr {
 }
 
 impl TriCsr {
+    /// Sets the triangle to `a`'s strict lower triangle, pattern and values
+    /// (reusing the buffers; allocates nothing when the sizes are unchanged).
+    pub(crate) fn set_lower_of(&mut self, a: &CsrMatrix) {
+        let n = a.n();
+        let (rp, ci, dg, av) = (a.row_ptr(), a.col_idx(), a.diag_index(), a.values());
+        self.reset(n);
+        self.val.clear();
+        for i in 0..n {
+            let (s, d) = (rp[i] as usize, dg[i] as usize);
+            self.col.extend_from_slice(&ci[s..d]);
+            self.val.extend_from_slice(&av[s..d]);
+            self.ptr.push(self.col.len() as u32);
+        }
+    }
+
+    /// Forward-sweep row `i`: `rhs_i − Σ_j val_ij w_j`, with
+    /// `w_prev = w[i − 1]` passed in a register and applied last (the
+    /// loop-carried dependency chain is one multiply and one subtraction).
+    ///
+    /// # Panics
+    /// If `i >= n` or `w.len() != n`.
+    #[inline(always)]
+    pub(crate) fn forward_row(&self, i: usize, rhs_i: f64, w: &[f64], w_prev: f64) -> f64 {
+        assert!(
+            i + 1 < self.ptr.len() && w.len() + 1 == self.ptr.len(),
+            "forward_row: out of range"
+        );
+        // SAFETY: i < n, and by the TriCsr invariants the row range lies within
+        // col/val and every column index is < n == w.len().
+        unsafe {
+            let (s, e) = self.range_unchecked(i);
+            if s == e {
+                return rhs_i;
+            }
+            let t = rhs_i - dot_unchecked(&self.col, &self.val, s, e - 1, w);
+            let c = *self.col.get_unchecked(e - 1) as usize;
+            let wc = if c + 1 == i {
+                w_prev
+            } else {
+                *w.get_unchecked(c)
+            };
+            t - *self.val.get_unchecked(e - 1) * wc
+        }
+    }
+
     /// Column indices and values of row `i` (for tests).
     #[cfg(test)]
     pub(crate) fn row(&self, i: usize) -> (&[u32], &[f64]) {
@@ -797,27 +950,7 @@ impl SplitFactor {
     /// If `i >= n` or `w.len() != n`.
     #[inline(always)]
     pub(crate) fn forward_row(&self, i: usize, rhs_i: f64, w: &[f64], w_prev: f64) -> f64 {
-        let lo = &self.lower;
-        assert!(
-            i < self.inv_diag.len() && w.len() == self.inv_diag.len(),
-            "forward_row: out of range"
-        );
-        // SAFETY: i < n, and by the TriCsr invariants the row range lies within
-        // col/val and every column index is < n == w.len().
-        unsafe {
-            let (s, e) = lo.range_unchecked(i);
-            if s == e {
-                return rhs_i;
-            }
-            let t = rhs_i - dot_unchecked(&lo.col, &lo.val, s, e - 1, w);
-            let c = *lo.col.get_unchecked(e - 1) as usize;
-            let wc = if c + 1 == i {
-                w_prev
-            } else {
-                *w.get_unchecked(c)
-            };
-            t - *lo.val.get_unchecked(e - 1) * wc
-        }
+        self.lower.forward_row(i, rhs_i, w, w_prev)
     }
 
     /// `z = (I + U_b)⁻¹ D⁻¹ (D + L_f)⁻¹ D r`: one forward and one backward
@@ -1079,6 +1212,36 @@ pub(crate) mod test_util {
 mod tests {
     use super::test_util::*;
     use super::*;
+
+    /// A 4-cycle has no triangle, a 4-cycle with a chord has two, a 3-D
+    /// grid none; symmetry is to the bit and in the pattern.
+    #[test]
+    fn triangles_and_symmetry_of_the_pattern() {
+        let ring = |chord: bool| {
+            let mut t = vec![(0, 0, 4.0), (1, 1, 4.0), (2, 2, 4.0), (3, 3, 4.0)];
+            let mut edges = vec![(0, 1), (1, 2), (2, 3), (0, 3)];
+            if chord {
+                edges.push((0, 2));
+            }
+            for (i, j) in edges {
+                t.push((i, j, -1.0));
+                t.push((j, i, -1.0));
+            }
+            CsrMatrix::from_triplets(4, &t).unwrap()
+        };
+        assert!(ring(false).is_triangle_free());
+        assert!(!ring(true).is_triangle_free());
+        let grid = laplacian(5, 4, 3, 0.1);
+        assert!(grid.is_triangle_free() && grid.is_symmetric());
+        let mut skew = grid.clone();
+        let k = skew.entry_index(7, 6).unwrap();
+        skew.values_mut()[k] = skew.values()[k].next_up();
+        assert!(!skew.is_symmetric());
+        let one_sided =
+            CsrMatrix::from_triplets(2, &[(0, 0, 1.0), (1, 1, 1.0), (1, 0, 0.0)]).unwrap();
+        assert_eq!(one_sided.max_asymmetry(), 0.0);
+        assert!(!one_sided.is_symmetric());
+    }
 
     #[test]
     fn from_faces_pattern_and_slots() {

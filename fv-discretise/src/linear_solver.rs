@@ -109,6 +109,9 @@ pub struct FactorisationInfo {
     pub restarts: usize,
     /// Symbolic analyses since creation (pattern changes).
     pub symbolic_analyses: usize,
+    /// IC(0) only: whether the last factor takes its off-diagonals from the
+    /// matrix and stores only its diagonal (a graph without triangles, DIC).
+    pub off_diagonals_of_matrix: bool,
     /// Numeric factorisations since creation.
     pub numeric_factorisations: usize,
 }
@@ -128,7 +131,9 @@ pub trait LinearSolver {
     /// `a` is the matrix the Krylov methods multiply with; it may differ in
     /// values from the factorised one (a lagged preconditioner), but must
     /// have the same size. The direct solver ignores `a` except for
-    /// computing the residuals.
+    /// computing the residuals; IC(0) on a graph without triangles reads
+    /// its off-diagonals in the sweeps (with a lagged `a`, the factorised
+    /// pivots and `a`'s off-diagonals: still symmetric positive definite).
     fn solve(
         &mut self,
         a: &CsrMatrix,
@@ -153,11 +158,18 @@ pub trait LinearSolver {
 
     /// Applies the preconditioner of the last factorisation once, z = M⁻¹ r
     /// (for a caller's own Krylov iteration on a larger system whose
-    /// diagonal blocks are the factorised matrices). Returns `false`, with
-    /// `z` untouched, for solvers that have no cheap one; the caller then
-    /// uses [`Self::solve`].
-    fn precondition(&self, r: &[f64], z: &mut [f64]) -> Result<bool, LinearSolverError> {
-        let _ = (r, z);
+    /// diagonal blocks are the factorised matrices). `a` is the matrix last
+    /// factorised: a preconditioner may read its coefficients rather than
+    /// store them (IC(0) on a graph without triangles). Returns `false`,
+    /// with `z` untouched, for solvers that have no cheap one; the caller
+    /// then uses [`Self::solve`].
+    fn precondition(
+        &self,
+        a: &CsrMatrix,
+        r: &[f64],
+        z: &mut [f64],
+    ) -> Result<bool, LinearSolverError> {
+        let _ = (a, r, z);
         Ok(false)
     }
 }

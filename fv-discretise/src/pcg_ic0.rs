@@ -16,18 +16,21 @@
 //! ```
 //!
 //! OpenFOAM's DIC keeps `E = lower(A)` and only updates the diagonal; that is
-//! the same factor when the cell graph has no triangles (hexahedral meshes)
-//! but drops the `E_ik E_jk` corrections on tetrahedral and polyhedral meshes,
-//! so it is not a true IC(0) there. DIC would save storing the two triangles
-//! (the sweeps would read `A`'s coefficients instead), not memory traffic: a
-//! sweep streams one triangle either way, so the true IC(0) costs the same
-//! per iteration.
-//!
-//! Storage: `E` (strict lower triangle, CSR), `D̃⁻¹ Eᵀ` (CSR of the scaled
-//! transpose, so the backward sweep gathers instead of scattering and never
-//! reads the diagonal) and `D̃⁻¹`, all contiguous. Forward sweep
+//! the same factor when the cell graph has no triangles (structured
+//! hexahedral meshes) but drops the `E_ik E_jk` corrections on tetrahedral
+//! and polyhedral meshes, so it is not a true IC(0) there. Forward sweep
 //! `t_i = r_i − Σ_j E_ij w_j`, `w_i = t_i / d̃_i`; backward sweep
 //! `z_i = w_i − Σ_j (E_ji / d̃_i) z_j`.
+//!
+//! Storage ([`factor`]): where the graph has no triangles and `A` is
+//! symmetric to the bit, `D̃⁻¹` and a copy of `E = lower(A)`, the backward
+//! sweep reading `A`'s own upper triangle, which the trailing mat-vec of
+//! the same pass streams anyway (the DIC storage of the same factor, to
+//! the bit: [`dic_factor`]); elsewhere `E` (strict lower triangle, CSR),
+//! `D̃⁻¹ Eᵀ` (CSR of the scaled transpose, so the backward sweep gathers
+//! instead of scattering) and `D̃⁻¹`, all contiguous ([`full_factor`]).
+//! Hence the solves and [`LinearSolver::precondition`] take the
+//! factorised matrix.
 //!
 //! # Breakdown
 //!
@@ -54,11 +57,16 @@
 //!
 //! [`PcgIc0::solve`] allocates nothing.
 
-use crate::csr::{CsrMatrix, SplitFactor};
+mod dic_factor;
+mod factor;
+mod full_factor;
+
+use crate::csr::CsrMatrix;
 use crate::linear_solver::{
     check_len, krylov_start, solve_in_turn, FactorisationInfo, LinearSolver, LinearSolverError,
     SolveInfo,
 };
+use factor::{Ic0Factor, Ic0Sweeps};
 
 /// First relative diagonal shift tried after an IC(0) breakdown.
 const SHIFT_INITIAL: f64 = 1e-3;
@@ -93,11 +101,11 @@ pub struct PcgIc0 {
     /// Parameters used by [`LinearSolver::solve`].
     params: PcgParams,
     /// The IC(0) factor.
-    factor: SplitFactor,
-    /// Upper-triangle position of each lower-triangle entry (transpose map).
-    lower_to_upper: Vec<u32>,
+    factor: Ic0Factor,
     /// Pattern the symbolic data was built for.
     pattern_id: Option<u64>,
+    /// Whether that pattern's graph has no triangles.
+    triangle_free: bool,
     /// Whether `factor` holds a valid factorisation.
     factorised: bool,
     /// Diagnostics.
@@ -188,66 +196,6 @@ impl PcgIc0 {
         self.extra.clear();
     }
 
-    /// Builds the factor pattern (lower and transposed upper triangle) for `a`'s pattern.
-    fn symbolic(&mut self, a: &CsrMatrix) {
-        self.factor
-            .set_pattern_transposed_from(a, &mut self.lower_to_upper);
-        self.pattern_id = Some(a.pattern_id());
-        self.info.symbolic_analyses += 1;
-    }
-
-    /// One IC(0) attempt with relative shift `shift`; `Ok(None)` on success, `Ok(Some(row))` on a bad pivot.
-    fn numeric(&mut self, a: &CsrMatrix, shift: f64) -> Result<Option<usize>, LinearSolverError> {
-        let n = a.n();
-        let (rp, av, dg) = (a.row_ptr(), a.values(), a.diag_index());
-        let f = self.factor.parts_mut();
-        let (lptr, lcol) = (f.lptr, f.lcol);
-        // E is built in the lower value array (L_f = E).
-        let e = f.lval;
-        let rd = f.inv_diag;
-        for i in 0..n {
-            let aii = av[dg[i] as usize];
-            if aii.is_nan() || aii <= 0.0 {
-                return Err(LinearSolverError::NotPositiveDefinite { row: i, value: aii });
-            }
-            let (ls, le) = (lptr[i] as usize, lptr[i + 1] as usize);
-            let a_row = rp[i] as usize; // lower entries of A's row i start here, in the same order
-            let mut d = aii * (1.0 + shift);
-            for k in ls..le {
-                let j = lcol[k] as usize;
-                let mut s = av[a_row + (k - ls)];
-                // Σ over k' < j in both row i (entries ls..k) and row j (all its lower entries).
-                let (mut p1, mut p2, e2) = (ls, lptr[j] as usize, lptr[j + 1] as usize);
-                while p1 < k && p2 < e2 {
-                    let (c1, c2) = (lcol[p1], lcol[p2]);
-                    if c1 == c2 {
-                        s -= e[p1] * e[p2] * rd[c1 as usize];
-                        p1 += 1;
-                        p2 += 1;
-                    } else if c1 < c2 {
-                        p1 += 1;
-                    } else {
-                        p2 += 1;
-                    }
-                }
-                e[k] = s;
-                d -= s * s * rd[j];
-            }
-            if !d.is_finite() {
-                return Err(LinearSolverError::NonFinite { what: "matrix" });
-            }
-            if d <= PIVOT_REL_MIN * aii * (1.0 + shift) {
-                return Ok(Some(i));
-            }
-            rd[i] = 1.0 / d;
-        }
-        // L_f = E stays; U_b = D̃⁻¹ Eᵀ: lower entry (i, j) becomes upper entry (j, i), scaled by 1/d̃_j.
-        for (k, &ek) in e.iter().enumerate() {
-            f.uval[self.lower_to_upper[k] as usize] = ek * rd[lcol[k] as usize];
-        }
-        Ok(None)
-    }
-
     /// Computes the IC(0) factorisation of `a` (symmetric positive definite; only its lower triangle is read).
     ///
     /// Reuses the symbolic data and all buffers when `a`'s pattern is the one
@@ -261,11 +209,14 @@ impl PcgIc0 {
             self.pattern_id = None;
         }
         if self.pattern_id != Some(a.pattern_id()) {
-            self.symbolic(a);
+            self.triangle_free = a.is_triangle_free();
+            self.pattern_id = Some(a.pattern_id());
+            self.info.symbolic_analyses += 1;
         }
+        self.factor.prepare(a, self.triangle_free);
         let mut shift = 0.0;
         let mut restarts = 0;
-        while let Some(row) = self.numeric(a, shift)? {
+        while let Some(row) = self.factor.numeric(a, shift, PIVOT_REL_MIN)? {
             restarts += 1;
             if restarts > MAX_RESTARTS {
                 return Err(LinearSolverError::FactorisationFailed { row, shift });
@@ -279,28 +230,37 @@ impl PcgIc0 {
         self.info.diagonal_shift = shift;
         self.info.restarts = restarts;
         self.info.numeric_factorisations += 1;
+        self.info.off_diagonals_of_matrix = self.factor.is_diagonal();
         self.factorised = true;
         Ok(())
     }
 
-    /// Applies the factorised preconditioner, `z = M⁻¹ r` (one forward and
-    /// one backward sweep), e.g. inside another Krylov method. Allocates
-    /// nothing.
-    pub fn apply_preconditioner(&self, r: &[f64], z: &mut [f64]) -> Result<(), LinearSolverError> {
+    /// Applies the preconditioner of the factorised matrix `a`, `z = M⁻¹ r`
+    /// (one forward and one backward sweep), e.g. inside another Krylov
+    /// method. `a` must be the matrix last factorised: on a graph without
+    /// triangles the sweeps read its off-diagonals. Allocates nothing.
+    pub fn apply_preconditioner(
+        &self,
+        a: &CsrMatrix,
+        r: &[f64],
+        z: &mut [f64],
+    ) -> Result<(), LinearSolverError> {
         if !self.factorised {
             return Err(LinearSolverError::NotFactorised);
         }
+        check_len("matrix", a.n(), self.n)?;
         check_len("r", r.len(), self.n)?;
         check_len("z", z.len(), self.n)?;
-        self.factor.apply(r, z);
+        self.factor.apply(a, r, z);
         Ok(())
     }
 
     /// Solves `a x = b` by IC(0)-PCG; `x` is the initial guess on input. Allocates nothing.
     ///
-    /// `a` must be symmetric positive definite and of the factorised size;
-    /// it may differ in values (and pattern) from the factorised matrix.
-    /// Reaching `max_iterations` is not an error (`converged: false`).
+    /// `a` must be the symmetric positive definite matrix last factorised
+    /// (on a graph without triangles the preconditioner's sweeps read its
+    /// off-diagonals). Reaching `max_iterations` is not an error
+    /// (`converged: false`).
     pub fn solve(
         &mut self,
         a: &CsrMatrix,
@@ -311,14 +271,30 @@ impl PcgIc0 {
         if !self.factorised {
             return Err(LinearSolverError::NotFactorised);
         }
-        pcg(&self.factor, self.n, a, b, x, params, &mut self.work)
+        pcg_with(&self.factor, self.n, a, b, x, params, &mut self.work)
+    }
+}
+
+/// [`pcg`] with the factor's storage.
+fn pcg_with(
+    fac: &Ic0Factor,
+    n: usize,
+    a: &CsrMatrix,
+    b: &[f64],
+    x: &mut [f64],
+    params: &PcgParams,
+    work: &mut PcgWork,
+) -> Result<SolveInfo, LinearSolverError> {
+    match fac {
+        Ic0Factor::Full(f) => pcg(f, n, a, b, x, params, work),
+        Ic0Factor::Dic(f) => pcg(f, n, a, b, x, params, work),
     }
 }
 
 /// IC(0)-PCG with the factor `fac` of an `n` × `n` matrix and the work
 /// vectors `work` (see the module documentation).
-fn pcg(
-    fac: &SplitFactor,
+fn pcg<F: Ic0Sweeps>(
+    fac: &F,
     n: usize,
     a: &CsrMatrix,
     b: &[f64],
@@ -346,7 +322,7 @@ fn pcg(
     let mut rz = 0.0;
     let mut w_prev = 0.0;
     for i in 0..n {
-        let t = fac.forward_row(i, r[i], w, w_prev);
+        let t = fac.forward_row(a, i, r[i], w, w_prev);
         let wi = t * rd[i];
         w[i] = wi;
         w_prev = wi;
@@ -356,29 +332,8 @@ fn pcg(
     let mut alpha = 0.0; // x += α p is deferred to the next backward pass (or the exit)
     for it in 1..=params.max_iterations {
         // Backward pass, rows descending: z = (I + U_b)⁻¹ w (in place), x += α p_old,
-        // p = z + β p_old, and trailing behind it q = A p, pᵀq.
-        let mut pq = 0.0;
-        let mut m = n; // rows m..n of q are done
-        let mut z_next = 0.0;
-        for i in (0..n).rev() {
-            let zi = fac.backward_row(i, w[i], w, z_next);
-            w[i] = zi;
-            z_next = zi;
-            let p_old = p[i];
-            if it == 1 {
-                p[i] = zi;
-            } else {
-                x[i] += alpha * p_old;
-                p[i] = zi + beta * p_old;
-            }
-            // p[i..n] is final: row m − 1 can be multiplied once its lowest column is ≥ i.
-            while m > 0 && a.min_col(m - 1) >= i {
-                m -= 1;
-                let qm = a.row_times(m, p);
-                q[m] = qm;
-                pq += p[m] * qm;
-            }
-        }
+        // p = z + β p_old, q = A p, pᵀq.
+        let pq = fac.backward_pass(a, w, p, x, q, alpha, (it > 1).then_some(beta));
         if !(pq > 0.0) {
             return Err(if pq.is_finite() {
                 LinearSolverError::Breakdown {
@@ -401,7 +356,7 @@ fn pcg(
             let ri = r[i] - alpha * q[i];
             r[i] = ri;
             rr += ri * ri;
-            let t = fac.forward_row(i, ri, w, w_prev);
+            let t = fac.forward_row(a, i, ri, w, w_prev);
             let wi = t * rd[i];
             w[i] = wi;
             w_prev = wi;
@@ -476,7 +431,7 @@ impl LinearSolver for PcgIc0 {
         rayon::scope(|s| {
             for (((b, x), work), result) in b.iter().zip(x.iter_mut()).zip(works).zip(&mut results)
             {
-                s.spawn(move |_| *result = pcg(fac, n, a, b, x, &params, work));
+                s.spawn(move |_| *result = pcg_with(fac, n, a, b, x, &params, work));
             }
         });
         for (result, i) in results.into_iter().zip(info.iter_mut()) {
@@ -486,27 +441,13 @@ impl LinearSolver for PcgIc0 {
     }
 
     /// z = (D̃ + Eᵀ)⁻¹ D̃ (D̃ + E)⁻¹ r: one forward and one backward sweep.
-    fn precondition(&self, r: &[f64], z: &mut [f64]) -> Result<bool, LinearSolverError> {
-        if !self.factorised {
-            return Err(LinearSolverError::NotFactorised);
-        }
-        check_len("r", r.len(), self.n)?;
-        check_len("z", z.len(), self.n)?;
-        let fac = &self.factor;
-        let rd = fac.inv_diag();
-        let mut w_prev = 0.0;
-        for i in 0..self.n {
-            let wi = fac.forward_row(i, r[i], z, w_prev) * rd[i];
-            z[i] = wi;
-            w_prev = wi;
-        }
-        let mut z_next = 0.0;
-        for i in (0..self.n).rev() {
-            let zi = fac.backward_row(i, z[i], z, z_next);
-            z[i] = zi;
-            z_next = zi;
-        }
-        Ok(true)
+    fn precondition(
+        &self,
+        a: &CsrMatrix,
+        r: &[f64],
+        z: &mut [f64],
+    ) -> Result<bool, LinearSolverError> {
+        self.apply_preconditioner(a, r, z).map(|()| true)
     }
 }
 
@@ -533,18 +474,18 @@ mod tests {
         let b = rhs(a.n(), 3);
         let mut s = PcgIc0::new(a.n());
         assert_eq!(
-            s.apply_preconditioner(&b, &mut vec![0.0; a.n()]),
+            s.apply_preconditioner(&a, &b, &mut vec![0.0; a.n()]),
             Err(LinearSolverError::NotFactorised)
         );
         s.factorise(&a).unwrap();
         let mut z = vec![0.0; a.n()];
-        s.apply_preconditioner(&b, &mut z).unwrap();
+        s.apply_preconditioner(&a, &b, &mut z).unwrap();
         assert!(rel_residual(&a, &b, &z) < 1e-13);
         let grid = laplacian(6, 5, 4, 0.1);
         let b = rhs(grid.n(), 5);
         s.factorise(&grid).unwrap();
         let mut z = vec![0.0; grid.n()];
-        s.apply_preconditioner(&b, &mut z).unwrap();
+        s.apply_preconditioner(&grid, &b, &mut z).unwrap();
         let one_pcg_step = rel_residual(&grid, &b, &z);
         assert!(one_pcg_step > 1e-3 && one_pcg_step < 0.5, "{one_pcg_step}");
     }
@@ -649,11 +590,11 @@ mod tests {
         let b = rhs(n, 3);
         let mut z = vec![0.0; n];
         assert!(matches!(
-            LinearSolver::precondition(&s, &b, &mut z),
+            LinearSolver::precondition(&s, &a, &b, &mut z),
             Err(LinearSolverError::NotFactorised)
         ));
         s.factorise(&a).unwrap();
-        assert!(LinearSolver::precondition(&s, &b, &mut z).unwrap());
+        assert!(LinearSolver::precondition(&s, &a, &b, &mut z).unwrap());
         let xd = direct(&a, &b);
         assert!(rel_diff(&z, &xd) < 1e-12, "{}", rel_diff(&z, &xd));
         // on a 2-D Laplacian it is an approximation, not the solve
@@ -662,9 +603,70 @@ mod tests {
         s2.factorise(&a2).unwrap();
         let b2 = rhs(a2.n(), 4);
         let mut z2 = vec![0.0; a2.n()];
-        assert!(LinearSolver::precondition(&s2, &b2, &mut z2).unwrap());
+        assert!(LinearSolver::precondition(&s2, &a2, &b2, &mut z2).unwrap());
         let d = rel_diff(&z2, &direct(&a2, &b2));
         assert!(d > 1e-4 && d < 0.5, "{d}");
+    }
+
+    /// On a graph without triangles (a 3-D grid, symmetric to the bit) the
+    /// factor takes the DIC storage and is, to the bit, the full IC(0): the
+    /// same pivots, the same preconditioned vector; PCG takes the same
+    /// iterations to the same solution up to round-off. A graph with triangles, or values asymmetric by one ulp,
+    /// get the full factor, and the grid the diagonal one again.
+    #[test]
+    fn diagonal_storage_is_the_full_factor_on_a_graph_without_triangles() {
+        let a = laplacian(9, 8, 7, 0.05);
+        let n = a.n();
+        let mut s = PcgIc0::new(n);
+        s.factorise(&a).unwrap();
+        assert!(s.factorisation_info().off_diagonals_of_matrix);
+        let Ic0Factor::Dic(diagonal) = &s.factor else {
+            panic!("a grid gets the diagonal factor")
+        };
+        let mut full = full_factor::FullFactor::default();
+        full.prepare(&a);
+        assert_eq!(full.numeric(&a, 0.0, PIVOT_REL_MIN).unwrap(), None);
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(diagonal.inv_diag()), bits(full.inv_diag()));
+        let r = rhs(n, 7);
+        let (mut z_full, mut z_diagonal) = (vec![0.0; n], vec![0.0; n]);
+        full.apply(&a, &r, &mut z_full);
+        diagonal.apply(&a, &r, &mut z_diagonal);
+        assert_eq!(bits(&z_full), bits(&z_diagonal));
+        assert!(
+            rel_diff(&z_full, &r) > 0.1,
+            "a preconditioner, not the identity"
+        );
+        let params = PcgParams::default();
+        let mut work = PcgWork::new(n);
+        let (mut x_full, mut x_diagonal) = (vec![0.0; n], vec![0.0; n]);
+        let info_full = pcg(&full, n, &a, &r, &mut x_full, &params, &mut work).unwrap();
+        let info_diagonal = pcg(diagonal, n, &a, &r, &mut x_diagonal, &params, &mut work).unwrap();
+        // the DIC backward pass sums q = A p in another order: round-off
+        assert!(
+            info_full.converged && info_full.iterations > 5,
+            "{info_full:?}"
+        );
+        assert_eq!(info_full.iterations, info_diagonal.iterations);
+        let (f, d) = (info_full.final_residual, info_diagonal.final_residual);
+        assert!((f - d).abs() <= 1e-10 * f, "{f} {d}");
+        assert!(rel_diff(&x_full, &x_diagonal) < 1e-12);
+
+        let with_triangles = random_spd(300, 3, 9);
+        assert!(!with_triangles.is_triangle_free());
+        let mut t = PcgIc0::new(with_triangles.n());
+        t.factorise(&with_triangles).unwrap();
+        assert!(!t.factorisation_info().off_diagonals_of_matrix);
+
+        let mut skew = a.clone();
+        let k = skew.entry_index(20, 19).unwrap();
+        skew.values_mut()[k] = skew.values()[k].next_up();
+        s.factorise(&skew).unwrap();
+        assert!(!s.factorisation_info().off_diagonals_of_matrix);
+        assert!(matches!(s.factor, Ic0Factor::Full(_)));
+        s.factorise(&a).unwrap();
+        assert!(s.factorisation_info().off_diagonals_of_matrix);
+        assert_eq!(s.factorisation_info().symbolic_analyses, 1);
     }
 
     #[test]
@@ -674,8 +676,12 @@ mod tests {
         let mut s = PcgIc0::new(a.n());
         s.factorise(&a).unwrap();
         assert_eq!(s.factorisation_info().diagonal_shift, 0.0);
+        assert!(!s.factorisation_info().off_diagonals_of_matrix);
         let n = a.n();
-        let f = &s.factor;
+        let Ic0Factor::Full(full) = &s.factor else {
+            panic!("a graph with triangles has the full factor")
+        };
+        let f = &full.factor;
         let mut l = vec![0.0; n * n]; // D̃ + E, dense
         for i in 0..n {
             l[i * n + i] = 1.0 / f.inv_diag()[i];

@@ -598,6 +598,19 @@ impl SolidMomentum {
         }
     }
 
+    /// The cell displacement recorded by the last [`Self::save_start`]
+    /// (the start of the current attempt at an increment), and the current
+    /// one to update (the segregated solver measures the increment's
+    /// displacement against it rather than keeping a copy, 24 B per cell).
+    pub fn u_and_start_mut(&mut self) -> (&mut [Vector], &[Vector]) {
+        (&mut self.u, &self.saved.0)
+    }
+
+    /// The cell displacement recorded by the last [`Self::save_start`].
+    pub fn u_start(&self) -> &[Vector] {
+        &self.saved.0
+    }
+
     /// Records the fields at the start of an attempt at an increment.
     pub fn save_start(&mut self) {
         self.saved.0.copy_from_slice(&self.u);
@@ -661,7 +674,7 @@ impl SolidMomentum {
     /// boundary face: K|Γ_b|/|d_n|).
     #[inline]
     pub fn face_coefficient(&self, geom: &MeshGeometry, f: usize) -> f64 {
-        self.k * geom.face_mag[f] / self.dn[f]
+        self.k * geom.face_mag(f) / self.dn[f]
     }
 
     /// Adds the boundary contributions to the matrix diagonal of component
@@ -1168,7 +1181,7 @@ impl SolidMomentum {
                 // the d-vector of the internal face, C_N − C_P
                 let d = geom.cell_centres[nb] - geom.cell_centres[o];
                 let jump = u_inc[nb] - u_inc[o] - grad_f.transpose() * d;
-                let rc = jump * (alpha * self.k * geom.face_mag[f] / self.dn[f]);
+                let rc = jump * (alpha * self.k * geom.face_mag(f) / self.dn[f]);
                 force += rc;
                 if carry {
                     // the committed increments' forces, moved with the face
@@ -1199,7 +1212,7 @@ impl SolidMomentum {
                         let g = self.boundary_gradient(f, b, o, &n);
                         current_area_vector(true, &g, &area).norm()
                     } else {
-                        geom.face_mag[f]
+                        geom.face_mag(f)
                     }
                 };
                 // a traction-type face as an unknown: the cell takes the
@@ -1207,7 +1220,7 @@ impl SolidMomentum {
                 let mut balance = |applied: Vector, g: &Tensor| match face_rows.as_deref_mut() {
                     Some(rows) => {
                         let internal = (self.face_traction(o, g, &n).0 + self.offset_at(b, g))
-                            * geom.face_mag[f];
+                            * geom.face_mag(f);
                         rows[b] = applied - internal;
                         internal
                     }
@@ -1220,7 +1233,7 @@ impl SolidMomentum {
                         balance(
                             t[f - p.start]
                                 * (self.loaded_area(b, &g, &n).norm()
-                                    * geom.face_mag[f]
+                                    * geom.face_mag(f)
                                     * self.law.thickness_stretch(o)),
                             &g,
                         )
@@ -1229,7 +1242,7 @@ impl SolidMomentum {
                         let g = self.boundary_gradient(f, b, o, &n);
                         balance(
                             -self.loaded_area(b, &g, &n)
-                                * (geom.face_mag[f]
+                                * (geom.face_mag(f)
                                     * pr[f - p.start]
                                     * self.law.thickness_stretch(o)),
                             &g,
@@ -1238,7 +1251,7 @@ impl SolidMomentum {
                     PatchCondition::LinearisedContact(lc) => {
                         let i = f - p.start;
                         let mag = match lc.moved_area_ratio(i) {
-                            Some(r) => r * geom.face_mag[f],
+                            Some(r) => r * geom.face_mag(f),
                             None => current_mag(),
                         };
                         let g = self.boundary_gradient(f, b, o, &n);

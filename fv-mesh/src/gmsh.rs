@@ -1457,7 +1457,7 @@ $EndElements
         assert!((g.total_volume() - 0.125).abs() < 1e-12);
         let area = |name: &str| -> f64 {
             let p = &a.patches[a.patch_index(name).expect("patch")];
-            p.faces().map(|f| g.face_mag[f]).sum()
+            p.faces().map(|f| g.face_mag(f)).sum()
         };
         assert!((area("xmin") - 0.125).abs() < 1e-12);
         assert!((area("bottom") - 0.5).abs() < 1e-12);

@@ -331,7 +331,7 @@ mod tests {
             assert!(g.cell_volumes.iter().all(|&v| v > 0.0));
             let volume: f64 = g.cell_volumes.iter().sum();
             let outer = patch(&m, "outer");
-            let area: f64 = outer.faces().map(|f| g.face_mag[f]).sum();
+            let area: f64 = outer.faces().map(|f| g.face_mag(f)).sum();
             errors.push((
                 (volume / exact_volume - 1.0).abs(),
                 (area / exact_outer - 1.0).abs(),
@@ -347,7 +347,7 @@ mod tests {
                     assert!((g.face_normal(f)[axis].abs() - 1.0).abs() < 1e-9);
                 }
                 // a quarter annulus of radii 10..12
-                let a: f64 = p.faces().map(|f| g.face_mag[f]).sum();
+                let a: f64 = p.faces().map(|f| g.face_mag(f)).sum();
                 let exact = std::f64::consts::PI * (ro * ro - ri * ri) / 4.0;
                 assert!((a / exact - 1.0).abs() < 0.03, "{name}: {a} vs {exact}");
             }
@@ -378,7 +378,7 @@ mod tests {
         assert!(g.cell_centres.iter().all(|c| c.z < 0.0));
         assert!(g.cell_volumes.iter().all(|&v| v > 0.0));
         let rim = patch(&h, "zmax");
-        let area: f64 = rim.faces().map(|f| g.face_mag[f]).sum();
+        let area: f64 = rim.faces().map(|f| g.face_mag(f)).sum();
         let exact = std::f64::consts::PI * 3.0;
         assert!((area / exact - 1.0).abs() < 0.03, "{area}");
         assert_eq!(h.patches.len(), 3);

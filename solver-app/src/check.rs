@@ -39,7 +39,7 @@ pub fn mesh_report(case: &Case, bodies: &[Body]) -> String {
         );
         let _ = writeln!(s, "  patches ({}):", b.mesh.patches.len());
         for (p, spec) in b.mesh.patches.iter().zip(&b.patch_specs) {
-            let area: f64 = p.faces().map(|f| b.geom.face_mag[f]).sum();
+            let area: f64 = p.faces().map(|f| b.geom.face_mag(f)).sum();
             // a contact patch carries the contact traction
             let contact: Vec<String> = case
                 .contacts

@@ -294,7 +294,7 @@ fn transmitted_forces(
             let a = if b.rigid || b.momentum.law.is_updated_lagrangian() {
                 side.surface.face_mag[f]
             } else {
-                b.geom.face_mag[b.mesh.patches[side.patch].start + f]
+                b.geom.face_mag(b.mesh.patches[side.patch].start + f)
             };
             normal += contact.pressure[f] * a;
             tangential += contact.tangential_traction[f] * a;
@@ -633,7 +633,7 @@ fn surface_material(body: &Body, surface: &Surface) -> FaceMaterial {
         .iter()
         .map(|&f| {
             let f = f as usize;
-            body.geom.cell_volumes[body.mesh.owner[f] as usize] / body.geom.face_mag[f]
+            body.geom.cell_volumes[body.mesh.owner[f] as usize] / body.geom.face_mag(f)
         })
         .collect();
     (k, g, len)
@@ -1505,8 +1505,8 @@ impl ContactSet {
                         // last increments diverged with it)
                         if deformable_pair && b.momentum.law.is_updated_lagrangian() {
                             let first = b.mesh.patches[side.patch].start;
-                            let mesh_mag = &b.geom.face_mag[first..];
-                            for ((r, &a), &a0) in lc
+                            let mesh_mag = b.geom.face_areas[first..].iter().map(|a| a.norm());
+                            for ((r, &a), a0) in lc
                                 .area_ratio
                                 .iter_mut()
                                 .zip(&side.surface.face_mag)

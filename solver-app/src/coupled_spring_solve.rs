@@ -136,7 +136,7 @@ impl CoupledSpringSolve {
                             info: &mut CoupledSolveInfo|
          -> Result<(), LinearSolverError> {
             for &(c, mi) in solved {
-                if !solvers[mi].precondition(&r[c], &mut z[c])? {
+                if !solvers[mi].precondition(&matrices[mi], &r[c], &mut z[c])? {
                     z[c].iter_mut().for_each(|v| *v = 0.0);
                     let si = solvers[mi].solve(&matrices[mi], &r[c], &mut z[c])?;
                     info.linear_iterations += si.iterations;

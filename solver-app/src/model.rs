@@ -306,7 +306,7 @@ impl Body {
                 let moved = fv_mesh::polygon_area_vector(self.mesh.face(f), |p| {
                     self.mesh.points[p] + self.point_du[p]
                 });
-                self.momentum.moved_area[f - ni] = moved / self.geom.face_mag[f];
+                self.momentum.moved_area[f - ni] = moved / self.geom.face_mag(f);
             }
         }
     }
@@ -1020,7 +1020,7 @@ fn conditions_from_mesh_types(
 fn force_control(mesh: &PolyMesh, geom: &MeshGeometry, k: f64, pi: usize) -> ForceControl {
     let faces = mesh.patches[pi].faces();
     let area_vector: Vector = faces.clone().map(|f| geom.face_areas[f]).sum();
-    let area: f64 = faces.map(|f| geom.face_mag[f]).sum();
+    let area: f64 = faces.map(|f| geom.face_mag(f)).sum();
     let n = if area_vector.norm() > 0.0 {
         area_vector.normalize()
     } else {

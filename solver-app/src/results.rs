@@ -281,7 +281,7 @@ pub fn patch_reaction(bodies: &[Body], bi: usize, p: usize, contacts: &ContactSe
     let area = |q: usize| -> f64 {
         body.mesh.patches[q]
             .faces()
-            .map(|f| body.geom.face_mag[f])
+            .map(|f| body.geom.face_mag(f))
             .sum()
     };
     let total: f64 = body.reported_patches().map(area).sum();
@@ -412,7 +412,7 @@ impl SummaryFigures {
         for (bi, p, name) in reported_patches(bodies) {
             let b = &bodies[bi];
             let f = patch_reaction(bodies, bi, p, contacts);
-            let area: f64 = b.mesh.patches[p].faces().map(|f| b.geom.face_mag[f]).sum();
+            let area: f64 = b.mesh.patches[p].faces().map(|f| b.geom.face_mag(f)).sum();
             patches.insert(
                 name,
                 serde_json::json!({ "reaction_force": [f.x, f.y, f.z], "area": area }),

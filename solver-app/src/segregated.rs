@@ -260,8 +260,6 @@ pub struct SegregatedSolver {
     /// Per-body reports of the bodies updated side by side.
     body_updates: Vec<BodyUpdate>,
     delta: Vec<Vector>,
-    /// Displacement at the start of the increment (global numbering).
-    u_start: Vec<Vector>,
     /// Largest bounding-box diagonal of the bodies.
     length_scale: f64,
     n: usize,
@@ -468,7 +466,6 @@ impl SegregatedSolver {
             x_each: Default::default(),
             body_updates: Vec::new(),
             delta: vec![Vector::zeros(); n],
-            u_start: vec![Vector::zeros(); n],
             length_scale,
             n,
             params: MomentumParams {
@@ -835,7 +832,8 @@ impl SegregatedSolver {
     pub fn begin_increment(&mut self, bodies: &mut [Body], contacts: &ContactSet) {
         self.relaxation_fraction = self.start_fraction;
         for b in bodies.iter_mut().filter(|b| !b.rigid) {
-            self.u_start[b.offset..b.offset + b.mesh.n_cells].copy_from_slice(&b.momentum.u);
+            // the reference of the relative residual (`SolidMomentum::u_start`)
+            b.momentum.save_start();
             b.momentum.unsolved = self.unsolved;
         }
         if let Some(p) = &self.predictor {
@@ -1040,7 +1038,8 @@ impl SegregatedSolver {
         let applied = self.relaxation * self.relaxation_fraction;
         for b in bodies.iter_mut().filter(|b| !b.rigid) {
             let off = b.offset;
-            for (i, u) in b.momentum.u.iter_mut().enumerate() {
+            let (u_now, u_start) = b.momentum.u_and_start_mut();
+            for (i, (u, &u0)) in u_now.iter_mut().zip(u_start).enumerate() {
                 let d = self.delta[off + i];
                 // accelerated: mixed by `mix_iterates`
                 if !accelerating {
@@ -1048,7 +1047,7 @@ impl SegregatedSolver {
                 }
                 // measured at the configured relaxation (CYCLE_PATIENCE)
                 norm_delta += (d * self.relaxation).norm_squared();
-                norm_incr += (*u - self.u_start[off + i]).norm_squared();
+                norm_incr += (*u - u0).norm_squared();
                 norm_total += u.norm_squared();
             }
         }
@@ -1532,8 +1531,7 @@ impl SegregatedSolver {
             contacts.commit_increment();
             if let Some(p) = &mut self.predictor {
                 for b in bodies.iter().filter(|b| !b.rigid) {
-                    let range = b.offset..b.offset + b.mesh.n_cells;
-                    p.record(b.offset, &b.momentum.u, &self.u_start[range]);
+                    p.record(b.offset, &b.momentum.u, b.momentum.u_start());
                 }
                 p.close_record();
             }

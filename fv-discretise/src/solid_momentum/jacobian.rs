@@ -232,7 +232,7 @@ impl SolidMomentum {
             let n = mesh.neighbour[f] as usize;
             let w = geom.weight(mesh, f);
             let l = times_vector(&geom.face_areas[f]);
-            let s = alpha * self.k * geom.face_mag[f] / self.dn[f];
+            let s = alpha * self.k * geom.face_mag(f) / self.dn[f];
             // ∂force/∂G_f from the Rhie–Chow term and the carried forces
             let mut qf = transpose_times(&(geom.cell_centres[n] - geom.cell_centres[o])) * (-s);
             if carry {
@@ -325,7 +325,7 @@ impl SolidMomentum {
                         if let Some(m) = self.traction_offset.get(b) {
                             q += transpose_times(m);
                         }
-                        let q = q * geom.face_mag[f];
+                        let q = q * geom.face_mag(f);
                         let qg = q * proj;
                         let qu: Tensor = q * i_n / dn;
                         through_gradient(row, o, &qg, add);

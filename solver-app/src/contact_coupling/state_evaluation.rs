@@ -209,7 +209,7 @@ impl ContactSet {
                     // between deformable bodies each receives the force the
                     // contact computed, over the moved surface's areas
                     lc.area_ratio[i] = if deformable_pair && ul {
-                        let r = side.surface.face_mag[i] / b.geom.face_mag[first + i];
+                        let r = side.surface.face_mag[i] / b.geom.face_mag(first + i);
                         if r.is_finite() {
                             r
                         } else {

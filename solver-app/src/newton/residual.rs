@@ -127,12 +127,12 @@ impl ResidualWork {
             let k = b.momentum.k;
             let ni = b.mesh.n_internal_faces();
             for f in 0..ni {
-                let a = k * b.geom.face_mag[f] / b.geom.delta(&b.mesh, f).norm();
+                let a = k * b.geom.face_mag(f) / b.geom.delta(&b.mesh, f).norm();
                 self.damping[b.offset + b.mesh.owner[f] as usize] += a;
                 self.damping[b.offset + b.mesh.neighbour[f] as usize] += a;
             }
             for f in ni..b.mesh.n_faces() {
-                let a = k * b.geom.face_mag[f] / b.momentum.normal_distance(f);
+                let a = k * b.geom.face_mag(f) / b.momentum.normal_distance(f);
                 if !a.is_finite() {
                     continue;
                 }
@@ -218,7 +218,7 @@ pub fn stiffness_area(bodies: &[Body]) -> f64 {
     let mut s = 0.0;
     for b in bodies.iter().filter(|b| !b.rigid) {
         let ni = b.mesh.n_internal_faces();
-        let area: f64 = b.geom.face_mag[ni..].iter().sum();
+        let area: f64 = b.geom.face_areas[ni..].iter().map(|a| a.norm()).sum();
         s += b.momentum.k * area;
     }
     s

@@ -1,25 +1,44 @@
 //! The cell each face of a patch bounds, so that a patch surface can be
 //! shown with the fields of the cells under it (issue 45: ParaView's
 //! default XDMF reader keeps only the arrays every block has).
-use super::{CellMeshData, PatchFaces};
+use super::PatchFaces;
 
 /// For every face of `faces`, the mesh cell whose points include all the
-/// face's points (a boundary face bounds exactly one cell). Cost: one
-/// pass over the mesh, then a few cells per face.
-pub(crate) fn face_cells(mesh: &CellMeshData, faces: &PatchFaces) -> Result<Vec<u64>, String> {
-    let n_points = mesh.n_points();
+/// face's points (a boundary face bounds exactly one cell), the mesh's
+/// cells given by their point lists (`connectivity[offsets[c]..offsets[c +
+/// 1]]`, points below `n_points`, as in [`super::CellMeshData`]). Cost:
+/// one pass over the mesh, then a few cells per face.
+pub(crate) fn face_cells(
+    connectivity: &[u64],
+    offsets: &[u64],
+    n_points: usize,
+    faces: &PatchFaces,
+) -> Result<Vec<u64>, String> {
+    let n_cells = offsets.len().saturating_sub(1);
+    if offsets.first().is_some_and(|&o| o != 0)
+        || offsets.windows(2).any(|w| w[0] > w[1])
+        || offsets.last().map_or(0, |&o| o as usize) != connectivity.len()
+    {
+        return Err("the mesh's cell offsets do not index its connectivity".to_string());
+    }
+    if let Some(p) = connectivity.iter().find(|&&p| p as usize >= n_points) {
+        return Err(format!(
+            "the mesh's cells refer to point {p}, but it has {n_points} points"
+        ));
+    }
+    let cell = |c: usize| &connectivity[offsets[c] as usize..offsets[c + 1] as usize];
     // cells around every point, in CSR form
     let mut start = vec![0usize; n_points + 1];
-    for &p in &mesh.connectivity {
+    for &p in connectivity {
         start[p as usize + 1] += 1;
     }
     for i in 0..n_points {
         start[i + 1] += start[i];
     }
     let mut fill = start.clone();
-    let mut around = vec![0u64; mesh.connectivity.len()];
-    for c in 0..mesh.n_cells() {
-        for &p in mesh.cell(c) {
+    let mut around = vec![0u64; connectivity.len()];
+    for c in 0..n_cells {
+        for &p in cell(c) {
             around[fill[p as usize]] = c as u64;
             fill[p as usize] += 1;
         }
@@ -42,8 +61,8 @@ pub(crate) fn face_cells(mesh: &CellMeshData, faces: &PatchFaces) -> Result<Vec<
             .iter()
             .copied()
             .find(|&c| {
-                let cell = mesh.cell(c as usize);
-                pts.iter().all(|&p| cell.contains(&u64::from(p)))
+                let points = cell(c as usize);
+                pts.iter().all(|&p| points.contains(&u64::from(p)))
             })
             .ok_or_else(|| format!("face {f} bounds no cell of the body"))?;
         cells.push(owner);
@@ -54,6 +73,11 @@ pub(crate) fn face_cells(mesh: &CellMeshData, faces: &PatchFaces) -> Result<Vec<
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::output::CellMeshData;
+
+    fn cells_of(mesh: &CellMeshData, faces: &PatchFaces) -> Result<Vec<u64>, String> {
+        face_cells(&mesh.connectivity, &mesh.offsets, mesh.n_points(), faces)
+    }
 
     /// Two hexahedra side by side in x; point (i,j,k) = i + 3j + 6k.
     fn two_hexes() -> CellMeshData {
@@ -91,7 +115,25 @@ mod tests {
             offsets: &[0, 4, 8, 12],
             connectivity: &conn,
         };
-        assert_eq!(face_cells(&mesh, &faces).unwrap(), [1, 0, 1]);
+        assert_eq!(cells_of(&mesh, &faces).unwrap(), [1, 0, 1]);
+    }
+
+    /// Cell lists read back from a file are checked before they are indexed.
+    #[test]
+    fn malformed_cell_lists_are_errors() {
+        let mesh = two_hexes();
+        let faces = PatchFaces {
+            offsets: &[0, 4],
+            connectivity: &[2, 5, 11, 8],
+        };
+        let short = &mesh.connectivity[..15];
+        let e = face_cells(short, &mesh.offsets, mesh.n_points(), &faces).unwrap_err();
+        assert_eq!(e, "the mesh's cell offsets do not index its connectivity");
+        let e = face_cells(&mesh.connectivity, &mesh.offsets, 11, &faces).unwrap_err();
+        assert_eq!(
+            e,
+            "the mesh's cells refer to point 11, but it has 11 points"
+        );
     }
 
     #[test]
@@ -102,7 +144,7 @@ mod tests {
             offsets: &[0, 4],
             connectivity: &[0, 2, 5, 3],
         };
-        let e = face_cells(&mesh, &faces).unwrap_err();
+        let e = cells_of(&mesh, &faces).unwrap_err();
         assert_eq!(e, "face 0 bounds no cell of the body");
     }
 }

@@ -136,7 +136,7 @@ pub fn run(b: Benchmark, settings: CouplingSettings) -> CouplingRun {
             let f = start + i;
             n += 1;
             penetration += (-g).max(0.0);
-            height += body.geom.cell_volumes[body.mesh.owner[f] as usize] / body.geom.face_mag[f];
+            height += body.geom.cell_volumes[body.mesh.owner[f] as usize] / body.geom.face_mag(f);
         }
     }
     let (relative_gap, contact_cell_height) = if n > 0 {

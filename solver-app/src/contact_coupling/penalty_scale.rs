@@ -99,8 +99,8 @@ pub fn is_flat(body: &Body, patch: usize) -> bool {
     };
     let mut normals = p
         .faces()
-        .filter(|&f| body.geom.face_mag[f] > 0.0)
-        .map(|f| body.geom.face_areas[f] / body.geom.face_mag[f]);
+        .filter(|&f| body.geom.face_mag(f) > 0.0)
+        .map(|f| body.geom.face_normal(f));
     let Some(first) = normals.next() else {
         return false;
     };

@@ -25,7 +25,7 @@ mod penalty_scale;
 mod restart;
 mod state_evaluation;
 
-pub use penalty_scale::{PenaltyScale, RIGID_PLANE_PENALTY_SCALE};
+pub use penalty_scale::PenaltyScale;
 
 /// Fraction of a face's previous linearisation contact fraction kept when
 /// the face opens against a rigid body (see [`ContactSide::beta`]):

@@ -93,7 +93,7 @@ fn curved_on_rigid_plane(plane: (&Body, usize), other: (&Body, usize)) -> bool {
 
 /// Whether patch `patch` of `body` is flat (in its current geometry):
 /// every face normal parallel to the first's.
-pub fn is_flat(body: &Body, patch: usize) -> bool {
+fn is_flat(body: &Body, patch: usize) -> bool {
     let Some(p) = body.mesh.patches.get(patch) else {
         return false;
     };

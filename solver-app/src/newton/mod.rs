@@ -15,6 +15,7 @@ pub mod preconditioning;
 pub mod residual;
 pub mod segregated_operator;
 mod start;
+mod step_limit;
 
 use std::ops::ControlFlow;
 

@@ -9,6 +9,7 @@ use super::jacobian::AssembledJacobian;
 use super::layout::StateLayout;
 use super::preconditioning::JACOBIAN_REUSE_KRYLOV;
 use super::segregated_operator::SegregatedOperator;
+use super::step_limit::contact_step_limit;
 use crate::contact_coupling::ContactSet;
 use crate::model::Body;
 use crate::profile::{Phase, PhaseTimes};
@@ -35,26 +36,6 @@ use std::time::Instant;
 const PENETRATION_LIMIT: f64 = 1.0;
 /// See [`PENETRATION_LIMIT`].
 const PENETRATION_GROWTH: f64 = 1.5;
-
-/// One Newton step may move a contact face that is in contact or within a
-/// cell of the other surface, or its owner cell, by this many times the
-/// face's half-cell height (the normal distance of the
-/// owner's centre) at most; a longer step is shortened before the line
-/// search. The linearised contact — pairs, normals and facets frozen at
-/// the base point — describes the contact only that far: across a curved
-/// surface's facets the gap turns quadratically, and Newton steps of
-/// several cells, accepted because the residual fell as the surfaces let
-/// go, made the iteration wander (curved beams: no convergence at any
-/// cut-back in the fifth increment, steps |dx| of 7–13 mm).
-const CONTACT_STEP_LIMIT: f64 = 1.0;
-
-/// An open contact face may move towards the other surface by its gap and
-/// this many half-cell heights beyond in one Newton step: the linear model
-/// of an open face has no contact, and a soft mode can carry it deep into
-/// the other body (concentric spheres after buckling: a face 0.009 mm off
-/// the plate sent 0.26 mm into it, the residual up from 2e-5 to 4e-2, the
-/// same cycle again and again).
-const OPEN_FACE_OVERSHOOT: f64 = 0.1;
 
 /// The force scale is at least this fraction of Σ K |Γ| over the bodies'
 /// boundary faces (a state at rest, with nothing loaded).
@@ -394,58 +375,7 @@ impl NonlinearProblem for ModelProblem<'_> {
     }
 
     fn step_limit(&self, _x: &[f64], dx: &[f64]) -> f64 {
-        let mut limit = 1.0f64;
-        let node_step = |node: usize| {
-            let k = 3 * node;
-            (dx[k] * dx[k] + dx[k + 1] * dx[k + 1] + dx[k + 2] * dx[k + 2]).sqrt()
-        };
-        for ci in &self.contacts.interfaces {
-            for (side, contact) in [
-                (&ci.master, &ci.tractions.master),
-                (&ci.slave, &ci.tractions.slave),
-            ] {
-                let b = &self.bodies[side.body];
-                if b.rigid {
-                    continue;
-                }
-                let ni = b.mesh.n_internal_faces();
-                for (i, f) in b.mesh.patches[side.patch].faces().enumerate() {
-                    let allowed = CONTACT_STEP_LIMIT * b.momentum.normal_distance(f);
-                    // faces in contact or within a cell of the other
-                    // surface at the base point (no gap: no pair)
-                    let near = contact
-                        .gap
-                        .get(i)
-                        .is_some_and(|&g| g.is_finite() && g < 2.0 * allowed);
-                    if !near {
-                        continue;
-                    }
-                    let cell = b.offset + b.mesh.owner[f] as usize;
-                    let mut step = node_step(cell);
-                    let face_node = self.layout.face_node(side.body, f - ni);
-                    if let Some(node) = face_node {
-                        step = step.max(node_step(node));
-                    }
-                    if step * limit > allowed {
-                        limit = allowed / step;
-                    }
-                    // an open face may close its gap and go on into the
-                    // other surface by OPEN_FACE_OVERSHOOT half cells
-                    let gap = contact.gap[i];
-                    if gap > 0.0 {
-                        let k = 3 * face_node.unwrap_or(cell);
-                        let n = &side.surface.face_normals[i];
-                        let approach = dx[k] * n[0] + dx[k + 1] * n[1] + dx[k + 2] * n[2];
-                        let open_allowed =
-                            gap + OPEN_FACE_OVERSHOOT * b.momentum.normal_distance(f);
-                        if approach * limit > open_allowed {
-                            limit = open_allowed / approach;
-                        }
-                    }
-                }
-            }
-        }
-        limit
+        contact_step_limit(self.bodies, self.contacts, self.layout, dx)
     }
 
     fn accept(&mut self) {

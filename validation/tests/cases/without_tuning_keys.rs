@@ -196,7 +196,7 @@ fn augmented_at(text: String, scale: f64) -> String {
 /// finite-difference products of a stiff, non-smooth contact residual),
 /// and Newton is taken at its floor, 7e-5–9e-5: a force 0.8 % off with
 /// the absolute contact step limit (the contact area a quarter of the
-/// converged one) and 10 % off with the relative one. Not converged
+/// converged one) and 10 % off with the relative one (one half cell). Not converged
 /// either way: issue 46 open there.
 #[test]
 fn augmented_results_do_not_depend_on_the_penalty() {

@@ -73,9 +73,9 @@ fn frictionless_fx_peak_within_three_percent_of_neto() {
 }
 
 /// The full slide, frictionless, either beam as master. Measured by
-/// Newton–Krylov (2026-11-29): |Fx| 9.764 N at 8.0 mm (+2.8 %), |Fy|
-/// 36.005 N at 18.0 mm (+0.9 %), at most 17 Newton iterations in an
-/// increment (upper master 9.765 / 36.006 N, 21); 3 s each. By the
+/// Newton–Krylov (2026-11-30): |Fx| 9.764 N at 8.0 mm (+2.8 %), |Fy|
+/// 36.005 N at 18.0 mm (+0.9 %), at most 16 Newton iterations in an
+/// increment (upper master 9.764 / 36.005 N, 18); 3 s each. By the
 /// segregated method (Rhie–Chow 1, before the prescribed ends moved
 /// their points exactly): 9.690 / 35.691 N, 838 outer iterations per
 /// increment.
@@ -93,9 +93,11 @@ fn frictionless_full_slide_against_neto() {
 }
 
 /// The full slide with μ = 0.3, either beam as master. Measured by
-/// Newton–Krylov (2026-11-29): |Fx| 17.454 N (+0.9 %), |Fy| 38.953 N
-/// (−0.1 %), at most 44 Newton iterations in an increment (upper master
-/// 17.455 / 38.990 N, 48); 6 s each. By the segregated method: 17.221
+/// Newton–Krylov (2026-11-30): |Fx| 17.454 N (+0.9 %), |Fy| 39.085 N
+/// (+0.2 %), at most 38 Newton iterations in an increment (upper master
+/// 17.455 / 39.002 N, 39); 6 s each. The contact step limit at 0.75
+/// instead of 0.7 half cells gave the upper master 94 here
+/// (`newton/step_limit.rs`). By the segregated method: 17.221
 /// / 38.915 N, 1,457 outer iterations per increment.
 #[test]
 fn frictional_full_slide_against_neto() {
@@ -126,12 +128,11 @@ fn frictional_full_slide_against_neto() {
 /// ours do (Fy at 28 mm −2.2 %). So the test asserts Fx against Neto et
 /// al. and Fy against CalculiX.
 ///
-/// Newton–Krylov (the default; measured 2026-11-29): |Fx| 27.04 N at
-/// 23 mm (−2.4 %), |Fy| 43.68 N at 28.5 mm (−1.0 % of CalculiX), 584
-/// Newton iterations, at most 55 in an increment (28.5 → 29 mm: attempts
-/// cut back, the sub-steps regrown). The bound on the most iterations
-/// guards issue 47's figure (195 before the faster rate abort and the
-/// regrowing sub-steps).
+/// Newton–Krylov (the default; measured 2026-11-30): |Fx| 27.04 N at
+/// 23 mm (−2.4 %), |Fy| 43.66 N at 28.5 mm (−1.0 % of CalculiX), 582
+/// Newton iterations, at most 23 in an increment (55 before the contact
+/// step limit measured the motion relative to the other beam at 0.7 half
+/// cells; 195 before the faster rate abort and the regrowing sub-steps).
 #[test]
 fn high_friction_full_slide_against_neto() {
     let r = run(0.6, 31.5, false);

@@ -76,7 +76,7 @@ use crate::linear_solver::{
     SolveInfo,
 };
 use factor::{Ic0Factor, Ic0Sweeps};
-use two_thread_sweeps::{pcg_two_threads, TwoThreadSweeps, TWO_THREAD_ROWS};
+use two_thread_sweeps::{claim, pcg_two_threads, TwoThreadSweeps, TWO_THREAD_ROWS};
 
 /// First relative diagonal shift tried after an IC(0) breakdown.
 const SHIFT_INITIAL: f64 = 1e-3;
@@ -302,8 +302,11 @@ impl PcgIc0 {
         if let (Some(sweeps), Ic0Factor::Dic(f), true) =
             (self.two_threads, &self.factor, self.shares_a_solve())
         {
-            let (lower, inv_diag) = (f.lower(), f.inv_diag());
-            return pcg_two_threads(sweeps, lower, inv_diag, a, b, x, params, &mut self.work);
+            if let Some(claim) = claim() {
+                let (lower, inv_diag) = (f.lower(), f.inv_diag());
+                let work = &mut self.work;
+                return pcg_two_threads(&claim, sweeps, lower, inv_diag, a, b, x, params, work);
+            }
         }
         pcg_with(&self.factor, self.n, a, b, x, params, &mut self.work)
     }
@@ -641,7 +644,15 @@ mod tests {
             let mut x2 = vec![0.0; n];
             let mut work = PcgWork::new(n);
             let i2 = pool(2).install(|| {
+                let claim = loop {
+                    match claim() {
+                        Some(c) => break c,
+                        // another test's shared solve finishes first
+                        None => std::thread::yield_now(),
+                    }
+                };
                 pcg_two_threads(
+                    &claim,
                     sweeps,
                     f.lower(),
                     f.inv_diag(),

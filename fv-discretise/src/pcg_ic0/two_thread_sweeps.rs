@@ -32,12 +32,15 @@
 //! (`rayon::scope`), whose second worker takes the join's second half; it
 //! is used only from outside the pool (a solve already on a worker, beside
 //! other solves, is the sequential one, so that the second half never waits
-//! behind the first on one worker). Allocates nothing.
+//! behind the first on one worker), and by one solve at a time ([`claim`]:
+//! two callers outside the pool, such as tests run side by side, would
+//! otherwise each hold a worker waiting for a second half queued behind
+//! it). Allocates nothing.
 
 use super::{PcgParams, PcgWork};
 use crate::csr::{CsrMatrix, TriCsr};
 use crate::linear_solver::{check_len, LinearSolverError, SolveInfo};
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 /// Systems of at least this many rows are solved by two threads at once
 /// when the pool has two or more.
@@ -50,6 +53,27 @@ const MIN_CHUNKS_PER_THREAD: usize = 8;
 const PUBLISH_ROWS: usize = 256;
 /// Spins before a waiting thread yields its core.
 const SPINS_BEFORE_YIELD: u32 = 64;
+
+/// Whether a solve shared by two threads is under way (in this process).
+static SHARED_SOLVE: AtomicBool = AtomicBool::new(false);
+
+/// The right to share a solve between two threads, until dropped.
+pub(crate) struct Claim(());
+
+impl Drop for Claim {
+    fn drop(&mut self) {
+        SHARED_SOLVE.store(false, Ordering::Release);
+    }
+}
+
+/// The right to share a solve between two threads, or `None` while
+/// another shared solve is under way (that caller then solves alone).
+pub(crate) fn claim() -> Option<Claim> {
+    SHARED_SOLVE
+        .compare_exchange(false, true, Ordering::Acquire, Ordering::Relaxed)
+        .is_ok()
+        .then_some(Claim(()))
+}
 
 /// The chunking of a pattern for the two threads' sweeps.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -153,9 +177,11 @@ struct Pass<'a> {
 
 /// IC(0)-PCG of `a x = b` on two threads (see the module documentation)
 /// with the DIC factor's `D̃⁻¹` `inv_diag` and `A`'s strict lower triangle
-/// `lower`; `x` is the initial guess.
+/// `lower`; `x` is the initial guess. `_claim`: no other shared solve
+/// runs meanwhile.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn pcg_two_threads(
+    _claim: &Claim,
     sweeps: TwoThreadSweeps,
     lower: &TriCsr,
     inv_diag: &[f64],

@@ -69,10 +69,15 @@ impl Drop for Claim {
 /// The right to share a solve between two threads, or `None` while
 /// another shared solve is under way (that caller then solves alone).
 pub(crate) fn claim() -> Option<Claim> {
-    SHARED_SOLVE
+    let free = SHARED_SOLVE
         .compare_exchange(false, true, Ordering::Acquire, Ordering::Relaxed)
-        .is_ok()
-        .then_some(Claim(()))
+        .is_ok();
+    // (not `then_some`: a Claim made and dropped here releases the holder's)
+    if free {
+        Some(Claim(()))
+    } else {
+        None
+    }
 }
 
 /// The chunking of a pattern for the two threads' sweeps.
@@ -544,4 +549,27 @@ fn backward_rows(
         q_next = cq.checked_sub(2);
     }
     pq
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// One claim at a time: a second caller is refused, and refusing it
+    /// leaves the first claim held (a refused claim once released it, and
+    /// two validation tests' solves each held a worker waiting for the
+    /// other half).
+    #[test]
+    fn a_refused_claim_leaves_the_holder_s_claim() {
+        let first = loop {
+            match claim() {
+                Some(c) => break c,
+                // another test's shared solve finishes first
+                None => std::thread::yield_now(),
+            }
+        };
+        assert!(claim().is_none());
+        assert!(claim().is_none(), "the refused claim released the first");
+        drop(first);
+    }
 }

@@ -76,6 +76,7 @@ use crate::linear_solver::{
     SolveInfo,
 };
 use factor::{Ic0Factor, Ic0Sweeps};
+use std::time::Instant;
 use two_thread_sweeps::{claim, pcg_two_threads, TwoThreadSweeps, TWO_THREAD_ROWS};
 
 /// First relative diagonal shift tried after an IC(0) breakdown.
@@ -129,6 +130,47 @@ pub struct PcgIc0 {
     /// storage's sweeps ([`two_thread_sweeps`]), for the pattern factorised
     /// last (`None` when its bandwidth is too large for it).
     two_threads: Option<TwoThreadSweeps>,
+    /// Seconds per iteration of the latest shared and lone solve, by which
+    /// the solves that could be shared are made the faster way.
+    share_timing: ShareTiming,
+}
+
+/// The wall time per iteration of the latest solve shared by two threads
+/// and of the latest made by one, where both are possible. Another process
+/// on one of the two cores stalls the shared sweeps at every row that
+/// waits for the other thread (box64 with a compiler running: 18.9 s on
+/// two threads against 11.9 s on one), so a solve is shared while that is
+/// faster per iteration; the other way is tried on the second solve and
+/// every [`PROBE_EVERY`]th.
+#[derive(Debug, Clone, Copy, Default)]
+struct ShareTiming {
+    shared: f64,
+    alone: f64,
+    solves: u32,
+}
+
+/// Every this many solves that could be shared, one is made the way not in
+/// use, to measure it again.
+const PROBE_EVERY: u32 = 64;
+
+impl ShareTiming {
+    /// Whether the next solve is shared.
+    fn share_next(&mut self) -> bool {
+        self.solves = self.solves.wrapping_add(1);
+        let probe = self.solves == 2 || self.solves.is_multiple_of(PROBE_EVERY);
+        let shared_faster = self.alone == 0.0 || self.shared <= self.alone;
+        shared_faster != probe
+    }
+
+    /// Records a solve that took `start.elapsed()` for `iterations`.
+    fn record(&mut self, shared: bool, start: Instant, iterations: usize) {
+        let t = start.elapsed().as_secs_f64() / (iterations + 1) as f64;
+        if shared {
+            self.shared = t;
+        } else {
+            self.alone = t;
+        }
+    }
 }
 
 /// The work vectors of one PCG solve.
@@ -299,16 +341,24 @@ impl PcgIc0 {
         if !self.factorised {
             return Err(LinearSolverError::NotFactorised);
         }
-        if let (Some(sweeps), Ic0Factor::Dic(f), true) =
-            (self.two_threads, &self.factor, self.shares_a_solve())
-        {
-            if let Some(claim) = claim() {
+        let Some(sweeps) = self.two_threads.filter(|_| self.shares_a_solve()) else {
+            return pcg_with(&self.factor, self.n, a, b, x, params, &mut self.work);
+        };
+        let start = Instant::now();
+        let claim = self.share_timing.share_next().then(claim).flatten();
+        let result = match (&claim, &self.factor) {
+            (Some(claim), Ic0Factor::Dic(f)) => {
                 let (lower, inv_diag) = (f.lower(), f.inv_diag());
                 let work = &mut self.work;
-                return pcg_two_threads(&claim, sweeps, lower, inv_diag, a, b, x, params, work);
+                pcg_two_threads(claim, sweeps, lower, inv_diag, a, b, x, params, work)
             }
+            _ => pcg_with(&self.factor, self.n, a, b, x, params, &mut self.work),
+        };
+        if let Ok(info) = &result {
+            self.share_timing
+                .record(claim.is_some(), start, info.iterations);
         }
-        pcg_with(&self.factor, self.n, a, b, x, params, &mut self.work)
+        result
     }
 }
 
@@ -671,6 +721,25 @@ mod tests {
             assert!(rel < 1e-9, "{i1:?} {i2:?}");
             assert!(rel_diff(&x1, &x2) < 1e-12, "{}", rel_diff(&x1, &x2));
         }
+    }
+
+    /// Shared while that is faster per iteration (or the lone time is not
+    /// known); the other way on the second solve and every 64th.
+    #[test]
+    fn solves_are_shared_while_that_is_faster() {
+        let mut t = ShareTiming::default();
+        let ways: Vec<bool> = (0..130).map(|_| t.share_next()).collect();
+        let lone: Vec<usize> = (0..130).filter(|&k| !ways[k]).collect();
+        assert_eq!(lone, [1, 63, 127]);
+        let mut t = ShareTiming {
+            shared: 2e-3,
+            alone: 1e-3,
+            solves: 0,
+        };
+        let shared: Vec<usize> = (0..130).filter(|_| t.share_next()).collect();
+        assert_eq!(shared.len(), 3);
+        t.shared = 0.5e-3;
+        assert!(t.share_next());
     }
 
     #[test]

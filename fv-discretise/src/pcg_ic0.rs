@@ -487,10 +487,9 @@ impl LinearSolver for PcgIc0 {
 
     /// The right-hand sides side by side on the thread pool, each with its
     /// own work vectors and the one factorisation (the same answers as one
-    /// after the other, to the bit); or, where one solve is shared by two
-    /// threads ([`two_thread_sweeps`]), one after the other, each on both
-    /// (three solves as three jobs on two threads bound the speed-up to
-    /// 1.5; see docs/kernel-performance.md).
+    /// after the other, to the bit). Three solves side by side on two
+    /// threads measured faster than each shared by both
+    /// ([`two_thread_sweeps`]; see docs/kernel-performance.md).
     fn solve_each(
         &mut self,
         a: &CsrMatrix,
@@ -500,7 +499,6 @@ impl LinearSolver for PcgIc0 {
     ) -> Result<(), LinearSolverError> {
         let k = b.len();
         if !(2..=MAX_SIDE_BY_SIDE).contains(&k)
-            || self.shares_a_solve()
             || self.n < PARALLEL_ROWS
             || rayon::current_num_threads() < 2
         {

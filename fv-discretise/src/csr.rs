@@ -786,8 +786,8 @@ impl TriCsr {
         }
     }
 
-    /// Column indices and values of row `i` (for tests).
-    #[cfg(test)]
+    /// Column indices and values of row `i`.
+    #[inline(always)]
     pub(crate) fn row(&self, i: usize) -> (&[u32], &[f64]) {
         let (s, e) = (self.ptr[i] as usize, self.ptr[i + 1] as usize);
         (&self.col[s..e], &self.val[s..e])

@@ -18,6 +18,7 @@
 //! Faces of `empty` patches enter G but take φ_b = φ_P, which fixes the
 //! gradient in the empty (out-of-plane) direction to zero and keeps G
 //! invertible on one-cell-thick meshes.
+use crate::cell_halves::{two_threads, CellHalves};
 use fv_mesh::{MeshGeometry, PolyMesh, Tensor, Vector};
 
 /// Least-squares gradient operator of one mesh: G_P⁻¹ of every cell.
@@ -31,6 +32,9 @@ pub struct LeastSquaresGradient {
     weight: Vec<f64>,
     /// Whether each patch is passive (its faces only regularise G).
     passive: Vec<bool>,
+    /// The mesh's cells in two halves for two threads (large meshes with
+    /// faces ordered by owner only).
+    halves: Option<CellHalves>,
 }
 
 impl LeastSquaresGradient {
@@ -75,6 +79,14 @@ impl LeastSquaresGradient {
         self.passive = (0..mesh.patches.len())
             .map(|p| passive_patch.get(p).copied().unwrap_or(false))
             .collect();
+        self.halves = CellHalves::of(mesh);
+    }
+
+    /// The cells in two halves, when the passes over this mesh are split
+    /// over two threads (a pool of two or more and a large mesh ordered by
+    /// owner).
+    pub(crate) fn halves(&self) -> Option<&CellHalves> {
+        self.halves.as_ref().filter(|_| two_threads())
     }
 
     /// G_P⁻¹ of cell `c` (exactly symmetric as computed, so the six
@@ -156,25 +168,72 @@ impl LeastSquaresGradient {
         &self,
         mesh: &PolyMesh,
         geom: &MeshGeometry,
-        cell: impl Fn(usize) -> Vector,
-        boundary: impl Fn(usize) -> Vector,
+        cell: impl Fn(usize) -> Vector + Sync,
+        boundary: impl Fn(usize) -> Vector + Sync,
+        out: &mut [Tensor],
+    ) {
+        let ni = mesh.n_internal_faces();
+        let Some(halves) = self.halves() else {
+            self.gradient_of_cells(mesh, geom, &cell, &boundary, 0..ni, &[], 0, out);
+            return;
+        };
+        // each half with the faces of its cells, in the one-thread order
+        let (h, fs) = (halves.split, halves.face_split);
+        let (out0, out1) = out.split_at_mut(h);
+        rayon::join(
+            || self.gradient_of_cells(mesh, geom, &cell, &boundary, 0..fs, &[], 0, out0),
+            || {
+                let cross = &halves.cross;
+                self.gradient_of_cells(mesh, geom, &cell, &boundary, fs..ni, cross, h, out1)
+            },
+        );
+    }
+
+    /// The gradient of the cells `lo..lo + out.len()` (into `out`): the
+    /// faces `cross` (owner below `lo`) to their neighbour, the internal
+    /// faces `faces` to their owner and neighbour, the boundary faces to
+    /// their owner, each only to cells of this range, in that order.
+    #[allow(clippy::too_many_arguments)]
+    fn gradient_of_cells(
+        &self,
+        mesh: &PolyMesh,
+        geom: &MeshGeometry,
+        cell: &impl Fn(usize) -> Vector,
+        boundary: &impl Fn(usize) -> Vector,
+        faces: std::ops::Range<usize>,
+        cross: &[u32],
+        lo: usize,
         out: &mut [Tensor],
     ) {
         out.iter_mut().for_each(|t| *t = Tensor::zeros());
         let ni = mesh.n_internal_faces();
-        for f in 0..ni {
+        let hi = lo + out.len();
+        for &f in cross {
+            let f = f as usize;
+            let o = mesh.owner[f] as usize;
+            let n = mesh.neighbour[f] as usize;
+            let (_, c_n) = self.internal_coefficients(mesh, geom, f);
+            let diff = cell(n) - cell(o);
+            out[n - lo] -= c_n * diff.transpose();
+        }
+        for f in faces {
             let o = mesh.owner[f] as usize;
             let n = mesh.neighbour[f] as usize;
             let (c_o, c_n) = self.internal_coefficients(mesh, geom, f);
             let diff = cell(n) - cell(o);
-            out[o] += c_o * diff.transpose();
-            out[n] -= c_n * diff.transpose();
+            out[o - lo] += c_o * diff.transpose();
+            if n < hi {
+                out[n - lo] -= c_n * diff.transpose();
+            }
         }
         for (p, &passive) in mesh.patches.iter().zip(&self.passive) {
             for f in p.faces() {
                 let o = mesh.owner[f] as usize;
+                if o < lo || o >= hi {
+                    continue;
+                }
                 let c = self.boundary_coefficient(mesh, geom, f, passive);
-                out[o] += c * (boundary(f - ni) - cell(o)).transpose();
+                out[o - lo] += c * (boundary(f - ni) - cell(o)).transpose();
             }
         }
     }

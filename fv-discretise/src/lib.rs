@@ -6,6 +6,7 @@
 #![warn(missing_docs)]
 
 mod boundary_conditions;
+mod cell_halves;
 mod least_squares_gradient;
 mod solid_momentum;
 mod stress_law;

@@ -56,10 +56,19 @@
 //! loop-carried dependency chain is one multiply and one subtraction.
 //!
 //! [`PcgIc0::solve`] allocates nothing.
+//!
+//! # Two threads
+//!
+//! On a pool of two threads or more, large systems in the DIC storage are
+//! solved by two threads at once with the same sweeps, rows dealt out in
+//! chunks and each thread waiting for the other's rows it reads
+//! ([`two_thread_sweeps`]): the same preconditioner and iteration up to
+//! the round-off of the sums.
 
 mod dic_factor;
 mod factor;
 mod full_factor;
+mod two_thread_sweeps;
 
 use crate::csr::CsrMatrix;
 use crate::linear_solver::{
@@ -67,6 +76,8 @@ use crate::linear_solver::{
     SolveInfo,
 };
 use factor::{Ic0Factor, Ic0Sweeps};
+use std::time::Instant;
+use two_thread_sweeps::{claim, pcg_two_threads, TwoThreadSweeps, TWO_THREAD_ROWS};
 
 /// First relative diagonal shift tried after an IC(0) breakdown.
 const SHIFT_INITIAL: f64 = 1e-3;
@@ -115,6 +126,51 @@ pub struct PcgIc0 {
     /// Work vectors of the further right-hand sides solved at the same
     /// time by [`LinearSolver::solve_each`] (allocated at its first call).
     extra: Vec<PcgWork>,
+    /// The chunking by which two threads share one solve with the DIC
+    /// storage's sweeps ([`two_thread_sweeps`]), for the pattern factorised
+    /// last (`None` when its bandwidth is too large for it).
+    two_threads: Option<TwoThreadSweeps>,
+    /// Seconds per iteration of the latest shared and lone solve, by which
+    /// the solves that could be shared are made the faster way.
+    share_timing: ShareTiming,
+}
+
+/// The wall time per iteration of the latest solve shared by two threads
+/// and of the latest made by one, where both are possible. Another process
+/// on one of the two cores stalls the shared sweeps at every row that
+/// waits for the other thread (box64 with a compiler running: 18.9 s on
+/// two threads against 11.9 s on one), so a solve is shared while that is
+/// faster per iteration; the other way is tried on the second solve and
+/// every [`PROBE_EVERY`]th.
+#[derive(Debug, Clone, Copy, Default)]
+struct ShareTiming {
+    shared: f64,
+    alone: f64,
+    solves: u32,
+}
+
+/// Every this many solves that could be shared, one is made the way not in
+/// use, to measure it again.
+const PROBE_EVERY: u32 = 64;
+
+impl ShareTiming {
+    /// Whether the next solve is shared.
+    fn share_next(&mut self) -> bool {
+        self.solves = self.solves.wrapping_add(1);
+        let probe = self.solves == 2 || self.solves.is_multiple_of(PROBE_EVERY);
+        let shared_faster = self.alone == 0.0 || self.shared <= self.alone;
+        shared_faster != probe
+    }
+
+    /// Records a solve that took `start.elapsed()` for `iterations`.
+    fn record(&mut self, shared: bool, start: Instant, iterations: usize) {
+        let t = start.elapsed().as_secs_f64() / (iterations + 1) as f64;
+        if shared {
+            self.shared = t;
+        } else {
+            self.alone = t;
+        }
+    }
 }
 
 /// The work vectors of one PCG solve.
@@ -210,6 +266,7 @@ impl PcgIc0 {
         }
         if self.pattern_id != Some(a.pattern_id()) {
             self.triangle_free = a.is_triangle_free();
+            self.two_threads = TwoThreadSweeps::for_matrix(a);
             self.pattern_id = Some(a.pattern_id());
             self.info.symbolic_analyses += 1;
         }
@@ -255,6 +312,19 @@ impl PcgIc0 {
         Ok(())
     }
 
+    /// Whether a solve is shared by two threads ([`two_thread_sweeps`]):
+    /// the DIC storage on a pattern of small enough bandwidth, at least
+    /// [`TWO_THREAD_ROWS`] rows, a pool of two threads or more, and a
+    /// caller outside the pool (a solve beside others on a worker is made
+    /// by that worker alone).
+    fn shares_a_solve(&self) -> bool {
+        self.two_threads.is_some()
+            && self.factor.is_diagonal()
+            && self.n >= TWO_THREAD_ROWS
+            && rayon::current_thread_index().is_none()
+            && rayon::current_num_threads() >= 2
+    }
+
     /// Solves `a x = b` by IC(0)-PCG; `x` is the initial guess on input. Allocates nothing.
     ///
     /// `a` must be the symmetric positive definite matrix last factorised
@@ -271,7 +341,24 @@ impl PcgIc0 {
         if !self.factorised {
             return Err(LinearSolverError::NotFactorised);
         }
-        pcg_with(&self.factor, self.n, a, b, x, params, &mut self.work)
+        let Some(sweeps) = self.two_threads.filter(|_| self.shares_a_solve()) else {
+            return pcg_with(&self.factor, self.n, a, b, x, params, &mut self.work);
+        };
+        let start = Instant::now();
+        let claim = self.share_timing.share_next().then(claim).flatten();
+        let result = match (&claim, &self.factor) {
+            (Some(claim), Ic0Factor::Dic(f)) => {
+                let (lower, inv_diag) = (f.lower(), f.inv_diag());
+                let work = &mut self.work;
+                pcg_two_threads(claim, sweeps, lower, inv_diag, a, b, x, params, work)
+            }
+            _ => pcg_with(&self.factor, self.n, a, b, x, params, &mut self.work),
+        };
+        if let Ok(info) = &result {
+            self.share_timing
+                .record(claim.is_some(), start, info.iterations);
+        }
+        result
     }
 }
 
@@ -400,7 +487,9 @@ impl LinearSolver for PcgIc0 {
 
     /// The right-hand sides side by side on the thread pool, each with its
     /// own work vectors and the one factorisation (the same answers as one
-    /// after the other, to the bit).
+    /// after the other, to the bit). Three solves side by side on two
+    /// threads measured faster than each shared by both
+    /// ([`two_thread_sweeps`]; see docs/kernel-performance.md).
     fn solve_each(
         &mut self,
         a: &CsrMatrix,
@@ -565,6 +654,90 @@ mod tests {
         let bs: Vec<&[f64]> = b.iter().map(|v| v.as_slice()).collect();
         let mut info = [SolveInfo::default(); 3];
         assert!(s.solve_each(&a, &bs, &mut xs, &mut info).is_err());
+    }
+
+    /// A 40³ Laplacian (64,000 rows, above `TWO_THREAD_ROWS`): two
+    /// threads sharing one solve with the sequential IC(0)'s sweeps take
+    /// the same iterations to the same solution as one thread (the sums
+    /// differ by round-off), at a tight and at the outer loop's loose
+    /// tolerance; on a one-thread pool no solve is shared.
+    #[test]
+    fn two_threads_share_one_solve_with_the_sequential_sweeps() {
+        let a = laplacian(40, 40, 40, 1e-3);
+        let n = a.n();
+        assert!(n >= TWO_THREAD_ROWS);
+        let b = rhs(n, 21);
+        let pool = |threads| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+        };
+        let mut s = PcgIc0::new(n);
+        pool(1).install(|| {
+            s.factorise(&a).unwrap();
+            assert!(!s.shares_a_solve());
+        });
+        let sweeps = s.two_threads.expect("a 40³ grid has a small bandwidth");
+        for tolerance in [1e-10, 0.1] {
+            let params = PcgParams {
+                tolerance,
+                max_iterations: 1000,
+            };
+            let mut x1 = vec![0.0; n];
+            let i1 = pool(1).install(|| s.solve(&a, &b, &mut x1, &params).unwrap());
+            let Ic0Factor::Dic(f) = &s.factor else {
+                panic!("a grid Laplacian has the DIC storage")
+            };
+            let mut x2 = vec![0.0; n];
+            let mut work = PcgWork::new(n);
+            let i2 = pool(2).install(|| {
+                let claim = loop {
+                    match claim() {
+                        Some(c) => break c,
+                        // another test's shared solve finishes first
+                        None => std::thread::yield_now(),
+                    }
+                };
+                pcg_two_threads(
+                    &claim,
+                    sweeps,
+                    f.lower(),
+                    f.inv_diag(),
+                    &a,
+                    &b,
+                    &mut x2,
+                    &params,
+                    &mut work,
+                )
+                .unwrap()
+            });
+            assert!(i1.converged && i2.converged, "{i1:?} {i2:?}");
+            assert_eq!(i1.iterations, i2.iterations);
+            assert!(i1.iterations > 1);
+            let rel = (i1.final_residual - i2.final_residual).abs() / i1.final_residual;
+            assert!(rel < 1e-9, "{i1:?} {i2:?}");
+            assert!(rel_diff(&x1, &x2) < 1e-12, "{}", rel_diff(&x1, &x2));
+        }
+    }
+
+    /// Shared while that is faster per iteration (or the lone time is not
+    /// known); the other way on the second solve and every 64th.
+    #[test]
+    fn solves_are_shared_while_that_is_faster() {
+        let mut t = ShareTiming::default();
+        let ways: Vec<bool> = (0..130).map(|_| t.share_next()).collect();
+        let lone: Vec<usize> = (0..130).filter(|&k| !ways[k]).collect();
+        assert_eq!(lone, [1, 63, 127]);
+        let mut t = ShareTiming {
+            shared: 2e-3,
+            alone: 1e-3,
+            solves: 0,
+        };
+        let shared: Vec<usize> = (0..130).filter(|_| t.share_next()).collect();
+        assert_eq!(shared.len(), 3);
+        t.shared = 0.5e-3;
+        assert!(t.share_next());
     }
 
     #[test]

@@ -984,8 +984,18 @@ impl SolidMomentum {
         let mut inverted = None;
         match &mut self.law {
             StressLaw::Small(m) => {
-                for (s, g) in self.sigma.iter_mut().zip(&self.grad_u) {
-                    *s = m.stress(g);
+                let stress = |sigma: &mut [Tensor], grad: &[Tensor]| {
+                    for (s, g) in sigma.iter_mut().zip(grad) {
+                        *s = m.stress(g);
+                    }
+                };
+                match self.gradient.halves() {
+                    Some(halves) => {
+                        let (s0, s1) = self.sigma.split_at_mut(halves.split);
+                        let (g0, g1) = self.grad_u.split_at(halves.split);
+                        rayon::join(|| stress(s0, g0), || stress(s1, g1));
+                    }
+                    None => stress(&mut self.sigma, &self.grad_u),
                 }
             }
             StressLaw::UpdatedLagrangian { law, state } => {
@@ -1170,36 +1180,49 @@ impl SolidMomentum {
         }
         let sig_cells: &[Tensor] = if ul { &self.sigma_hat } else { &self.sigma };
         let (u_inc, _) = self.increment();
-        for f in 0..ni {
-            let o = mesh.owner[f] as usize;
-            let nb = mesh.neighbour[f] as usize;
-            let w = geom.weight(mesh, f);
-            let sig_f = sig_cells[o] * w + sig_cells[nb] * (1.0 - w);
-            let mut force = sig_f * geom.face_areas[f];
-            if alpha != 0.0 {
-                let grad_f = self.grad_u[o] * w + self.grad_u[nb] * (1.0 - w);
-                // the d-vector of the internal face, C_N − C_P
-                let d = geom.cell_centres[nb] - geom.cell_centres[o];
-                let jump = u_inc[nb] - u_inc[o] - grad_f.transpose() * d;
-                let rc = jump * (alpha * self.k * geom.face_mag(f) / self.dn[f]);
-                force += rc;
-                if carry {
-                    // the committed increments' forces, moved with the face
-                    // by f_f = I + (∇Δu)_fᵀ
-                    let c = self.rc_carried[f];
-                    force += c + grad_f.transpose() * c;
-                    if let Some(r) = rc_increment.get_mut(f) {
-                        *r = rc;
-                    }
-                }
+        let faces = InternalFaceForces {
+            mesh,
+            geom,
+            sig_cells,
+            grad_u: &self.grad_u,
+            u_inc,
+            dn: &self.dn,
+            rc_carried: &self.rc_carried,
+            alpha,
+            k: self.k,
+            carry,
+        };
+        let scale = if scale_forces {
+            &mut force_scale[..]
+        } else {
+            &mut []
+        };
+        let rc = if carry {
+            &mut rc_increment[..]
+        } else {
+            &mut []
+        };
+        match self.gradient.halves() {
+            Some(halves) => {
+                // each half with the faces of its cells, in the one-thread order
+                let (h, fs) = (halves.split, halves.face_split);
+                let (r0, r1) = residual.split_at_mut(h);
+                let (s0, s1) = if scale.is_empty() {
+                    (&mut [][..], &mut [][..])
+                } else {
+                    scale.split_at_mut(h)
+                };
+                let (rc0, rc1) = if rc.is_empty() {
+                    (&mut [][..], &mut [][..])
+                } else {
+                    rc.split_at_mut(fs)
+                };
+                rayon::join(
+                    || faces.add_to_cells(0..fs, &[], 0, r0, s0, rc0),
+                    || faces.add_to_cells(fs..ni, &halves.cross, h, r1, s1, rc1),
+                );
             }
-            residual[o] += force;
-            residual[nb] -= force;
-            if scale_forces {
-                let m = force.norm();
-                force_scale[o] += m;
-                force_scale[nb] += m;
-            }
+            None => faces.add_to_cells(0..ni, &[], 0, &mut residual, scale, rc),
         }
         for (p, cond) in mesh.patches.iter().zip(&self.conditions) {
             for f in p.faces() {
@@ -1303,6 +1326,105 @@ impl SolidMomentum {
             .faces()
             .map(|f| self.face_force[f - ni])
             .sum()
+    }
+}
+
+/// What the force through an internal face reads (see
+/// [`InternalFaceForces::force`]).
+struct InternalFaceForces<'a> {
+    mesh: &'a PolyMesh,
+    geom: &'a MeshGeometry,
+    /// σ of the cells (σ̂ under the updated Lagrangian form).
+    sig_cells: &'a [Tensor],
+    grad_u: &'a [Tensor],
+    /// u (Δu under the updated Lagrangian form).
+    u_inc: &'a [Vector],
+    dn: &'a [f64],
+    rc_carried: &'a [Vector],
+    /// α_RC.
+    alpha: f64,
+    /// The implicit stiffness of the Rhie–Chow term.
+    k: f64,
+    /// Whether the committed increments' Rhie–Chow forces are carried.
+    carry: bool,
+}
+
+impl InternalFaceForces<'_> {
+    /// The force of face `f` on its owner (minus that on its neighbour):
+    /// the interpolated σ̂ on the area vector, with the Rhie–Chow term
+    /// (and the carried one); and this increment's Rhie–Chow force.
+    #[inline]
+    fn force(&self, f: usize) -> (Vector, Vector) {
+        let (mesh, geom) = (self.mesh, self.geom);
+        let o = mesh.owner[f] as usize;
+        let nb = mesh.neighbour[f] as usize;
+        let w = geom.weight(mesh, f);
+        let sig_f = self.sig_cells[o] * w + self.sig_cells[nb] * (1.0 - w);
+        let mut force = sig_f * geom.face_areas[f];
+        let mut rc = Vector::zeros();
+        if self.alpha != 0.0 {
+            let grad_f = self.grad_u[o] * w + self.grad_u[nb] * (1.0 - w);
+            // the d-vector of the internal face, C_N − C_P
+            let d = geom.cell_centres[nb] - geom.cell_centres[o];
+            let jump = self.u_inc[nb] - self.u_inc[o] - grad_f.transpose() * d;
+            rc = jump * (self.alpha * self.k * geom.face_mag(f) / self.dn[f]);
+            force += rc;
+            if self.carry {
+                // the committed increments' forces, moved with the face
+                // by f_f = I + (∇Δu)_fᵀ
+                let c = self.rc_carried[f];
+                force += c + grad_f.transpose() * c;
+            }
+        }
+        (force, rc)
+    }
+
+    /// The internal faces' forces on the cells `lo..lo + residual.len()`:
+    /// those of `cross` (owner below `lo`) on their neighbour, those of
+    /// `faces` on their owner and neighbour, only to cells of this range,
+    /// in that order; with Σ|force| into `scale` (when not empty) and this
+    /// increment's Rhie–Chow force of `faces` into `rc` (indexed from
+    /// `faces.start`, when not empty).
+    fn add_to_cells(
+        &self,
+        faces: std::ops::Range<usize>,
+        cross: &[u32],
+        lo: usize,
+        residual: &mut [Vector],
+        scale: &mut [f64],
+        rc: &mut [Vector],
+    ) {
+        let mesh = self.mesh;
+        let hi = lo + residual.len();
+        for &f in cross {
+            let f = f as usize;
+            let nb = mesh.neighbour[f] as usize;
+            let (force, _) = self.force(f);
+            residual[nb - lo] -= force;
+            if let Some(s) = scale.get_mut(nb - lo) {
+                *s += force.norm();
+            }
+        }
+        let f0 = faces.start;
+        for f in faces {
+            let o = mesh.owner[f] as usize;
+            let nb = mesh.neighbour[f] as usize;
+            let (force, rc_f) = self.force(f);
+            if let Some(r) = rc.get_mut(f - f0) {
+                *r = rc_f;
+            }
+            residual[o - lo] += force;
+            if nb < hi {
+                residual[nb - lo] -= force;
+            }
+            if !scale.is_empty() {
+                let m = force.norm();
+                scale[o - lo] += m;
+                if nb < hi {
+                    scale[nb - lo] += m;
+                }
+            }
+        }
     }
 }
 

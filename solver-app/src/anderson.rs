@@ -217,19 +217,19 @@ impl AndersonAcceleration {
             let s = self.next;
             // ΔX and ΔF in place of the previous iterate, which then
             // becomes the column of slot s
-            for ((xp, fp), (xi, fi)) in self
-                .x_prev
-                .iter_mut()
-                .zip(self.f_prev.iter_mut())
-                .zip(self.x.iter().zip(&self.f))
-            {
-                *xp = xi - *xp;
-                *fp = fi - *fp;
-            }
-            // the correction's entries beyond the iterate
             let (n_x, n_f) = (self.n_x, self.n_f);
-            for (fp, fi) in self.f_prev[n_x..].iter_mut().zip(&self.f[n_x..n_f]) {
-                *fp = fi - *fp;
+            let (xp, fp) = (&mut self.x_prev[..], &mut self.f_prev[..n_f]);
+            let (x, f) = (&self.x[..], &self.f[..n_f]);
+            if n_x >= PARALLEL_LEN && two_threads() {
+                let h = n_x / 2;
+                let (xp0, xp1) = xp.split_at_mut(h);
+                let (fp0, fp1) = fp.split_at_mut(h);
+                rayon::join(
+                    || differences(xp0, fp0, &x[..h], &f[..h]),
+                    || differences(xp1, fp1, &x[h..], &f[h..]),
+                );
+            } else {
+                differences(xp, fp, x, f);
             }
             std::mem::swap(&mut self.dx[s], &mut self.x_prev);
             std::mem::swap(&mut self.df[s], &mut self.f_prev);
@@ -278,7 +278,7 @@ impl AndersonAcceleration {
             for (c, &j) in group.iter().enumerate() {
                 cols[c] = &self.df[j];
             }
-            let sums = dot_pairs(&cols[..group.len()], &self.df[s], f);
+            let sums = dot_pairs_split(&cols[..group.len()], &self.df[s], f);
             for (&j, &(g, r)) in group.iter().zip(&sums) {
                 self.gram[s * self.depth + j] = g;
                 self.gram[j * self.depth + s] = g;
@@ -344,11 +344,25 @@ impl AndersonAcceleration {
         let out = flat(out);
         let x = flat_ref(&self.x_prev[range.clone()]);
         let f = flat_ref(&self.f_prev[f_range]);
-        let mut groups = cols[..k].chunks(MIX_GROUP);
-        let first = groups.next().unwrap_or(&[]);
-        mix_columns(out, Some((x, f)), beta, first);
-        for group in groups {
-            mix_columns(out, None, beta, group);
+        let cols = &cols[..k];
+        if out.len() >= 3 * PARALLEL_LEN && two_threads() {
+            // the same operations on every entry, in halves
+            let h = range.len() / 2;
+            let (out0, out1) = out.split_at_mut(3 * h);
+            let (mut c0, mut c1) = (
+                [(0.0, empty, empty); MAX_DEPTH],
+                [(0.0, empty, empty); MAX_DEPTH],
+            );
+            for ((p0, p1), &(g, dx, df)) in c0.iter_mut().zip(c1.iter_mut()).zip(cols) {
+                let ((dx0, dx1), (df0, df1)) = (dx.split_at(h), df.split_at(h));
+                (*p0, *p1) = ((g, dx0, df0), (g, dx1, df1));
+            }
+            rayon::join(
+                || mix_groups(out0, &x[..3 * h], &f[..3 * h], beta, &c0[..k]),
+                || mix_groups(out1, &x[3 * h..], &f[3 * h..], beta, &c1[..k]),
+            );
+        } else {
+            mix_groups(out, x, f, beta, cols);
         }
     }
 
@@ -455,6 +469,49 @@ fn flat_ref(v: &[Vector]) -> &[f64] {
     unsafe { std::slice::from_raw_parts(v.as_ptr().cast::<f64>(), 3 * v.len()) }
 }
 
+/// Vectors (of [`Vector`]s) of at least this many entries are taken in two
+/// halves on two threads when the pool has two or more: the passes over
+/// the iterates and the history (the mix, the differences, the dot
+/// products). The mix and the differences are the same to the bit; the
+/// dot products are summed in two parts.
+const PARALLEL_LEN: usize = 32_768;
+
+/// Whether the pool has two threads or more.
+fn two_threads() -> bool {
+    rayon::current_num_threads() >= 2
+}
+
+/// ΔX = x − x_prev and ΔF = f − f_prev in place of the previous iterate
+/// and correction (`fp` and `f` longer than `xp` and `x`: the
+/// correction's entries beyond the iterate, the gradient's change).
+fn differences(xp: &mut [Vector], fp: &mut [Vector], x: &[Vector], f: &[Vector]) {
+    for ((xp, fp), (xi, fi)) in xp.iter_mut().zip(fp.iter_mut()).zip(x.iter().zip(f)) {
+        *xp = xi - *xp;
+        *fp = fi - *fp;
+    }
+    let n_x = xp.len();
+    for (fp, fi) in fp[n_x..].iter_mut().zip(&f[n_x..]) {
+        *fp = fi - *fp;
+    }
+}
+
+/// `out = x + β f − Σ γ (Δx + β Δf)` over the flat entries, the columns
+/// [`MIX_GROUP`] at a time in one pass each.
+fn mix_groups(
+    out: &mut [f64],
+    x: &[f64],
+    f: &[f64],
+    beta: f64,
+    cols: &[(f64, &[Vector], &[Vector])],
+) {
+    let mut groups = cols.chunks(MIX_GROUP);
+    let first = groups.next().unwrap_or(&[]);
+    mix_columns(out, Some((x, f)), beta, first);
+    for group in groups {
+        mix_columns(out, None, beta, group);
+    }
+}
+
 /// Columns of the history applied in one pass of [`mix_columns`].
 const MIX_GROUP: usize = 3;
 
@@ -526,7 +583,37 @@ fn mix_columns(
 }
 
 fn dot(a: &[Vector], b: &[Vector]) -> f64 {
+    if a.len() >= PARALLEL_LEN && two_threads() {
+        let h = a.len() / 2;
+        let (s0, s1) = rayon::join(|| dot_of(&a[..h], &b[..h]), || dot_of(&a[h..], &b[h..]));
+        s0 + s1
+    } else {
+        dot_of(a, b)
+    }
+}
+
+fn dot_of(a: &[Vector], b: &[Vector]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x.dot(y)).sum()
+}
+
+/// [`dot_pairs`], in two halves on two threads for long vectors.
+fn dot_pairs_split(cols: &[&[Vector]], b: &[Vector], c: &[Vector]) -> [(f64, f64); GRAM_GROUP] {
+    let n = b.len();
+    if n < PARALLEL_LEN || !two_threads() {
+        return dot_pairs(cols, b, c);
+    }
+    let h = n / 2;
+    let empty: &[Vector] = &[];
+    let (mut lo, mut hi) = ([empty; GRAM_GROUP], [empty; GRAM_GROUP]);
+    for ((l, u), a) in lo.iter_mut().zip(hi.iter_mut()).zip(cols) {
+        (*l, *u) = a.split_at(h);
+    }
+    let k = cols.len();
+    let (s0, s1) = rayon::join(
+        || dot_pairs(&lo[..k], &b[..h], &c[..h]),
+        || dot_pairs(&hi[..k], &b[h..], &c[h..]),
+    );
+    std::array::from_fn(|j| (s0[j].0 + s1[j].0, s0[j].1 + s1[j].1))
 }
 
 /// Stored columns whose Gram entries and ΔFᵀf one pass of [`dot_pairs`] forms.

@@ -136,6 +136,104 @@ fn budgeted_depth(depth: usize, n_mixed: usize, cells: usize) -> usize {
 /// saves).
 const PARALLEL_COMPONENT_ROWS: usize = 4096;
 
+/// The solver's own passes over a body's cells (gathering the residual,
+/// scattering the correction, applying it with its norms, copying the
+/// iterate for the acceleration) are split in two halves on two threads
+/// from this many cells, when the pool has two threads or more.
+const PARALLEL_PASS_CELLS: usize = 32_768;
+
+/// Whether a pass over `n` cells is split over two threads.
+fn split_pass(n: usize) -> bool {
+    n >= PARALLEL_PASS_CELLS && rayon::current_num_threads() > 1
+}
+
+/// `dst = src`, in halves on two threads for long vectors.
+fn copy_cells(dst: &mut [Vector], src: &[Vector]) {
+    if split_pass(dst.len()) {
+        let h = dst.len() / 2;
+        let (d0, d1) = dst.split_at_mut(h);
+        let (s0, s1) = src.split_at(h);
+        rayon::join(|| d0.copy_from_slice(s0), || d1.copy_from_slice(s1));
+    } else {
+        dst.copy_from_slice(src);
+    }
+}
+
+/// The gradient's change in the acceleration's correction: `f` (the
+/// gradient at the start of the outer iteration) becomes (g − f)/β; in
+/// halves on two threads for long vectors.
+fn gradient_change(f: &mut [Vector], g: &[Vector], beta: f64) {
+    let change = |f: &mut [Vector], g: &[Vector]| {
+        for (f, g) in f.iter_mut().zip(g) {
+            *f = (g - *f) / beta;
+        }
+    };
+    if split_pass(f.len()) {
+        let h = f.len() / 2;
+        let (f0, f1) = f.split_at_mut(h);
+        let (g0, g1) = g.split_at(h);
+        rayon::join(|| change(f0, g0), || change(f1, g1));
+    } else {
+        change(f, g);
+    }
+}
+
+/// Component `c` of every correction `delta` set to `x`.
+fn scatter_component(delta: &mut [Vector], x: &[f64], c: usize) {
+    let scatter = |delta: &mut [Vector], x: &[f64]| {
+        for (d, &x) in delta.iter_mut().zip(x) {
+            d[c] = x;
+        }
+    };
+    if split_pass(delta.len()) {
+        let h = delta.len() / 2;
+        let (d0, d1) = delta.split_at_mut(h);
+        let (x0, x1) = x.split_at(h);
+        rayon::join(|| scatter(d0, x0), || scatter(d1, x1));
+    } else {
+        scatter(delta, x);
+    }
+}
+
+/// The correction `delta` applied to the cells `u` (times `applied`,
+/// unless `accelerating`: the mix has set them), with the squares of its
+/// norm at the relaxation `relaxation`, of the increment u − u_start and of
+/// u added to `sums`; in halves on two threads for long vectors (the sums
+/// then in two parts).
+fn apply_correction(
+    u: &mut [Vector],
+    u_start: &[Vector],
+    delta: &[Vector],
+    (accelerating, applied, relaxation): (bool, f64, f64),
+    sums: [f64; 3],
+) -> [f64; 3] {
+    let pass = |u: &mut [Vector], u_start: &[Vector], delta: &[Vector], sums: [f64; 3]| {
+        let [mut norm_delta, mut norm_incr, mut norm_total] = sums;
+        for ((u, &u0), &d) in u.iter_mut().zip(u_start).zip(delta) {
+            // accelerated: mixed by `mix_iterates`
+            if !accelerating {
+                *u += d * applied;
+            }
+            // measured at the configured relaxation (CYCLE_PATIENCE)
+            norm_delta += (d * relaxation).norm_squared();
+            norm_incr += (*u - u0).norm_squared();
+            norm_total += u.norm_squared();
+        }
+        [norm_delta, norm_incr, norm_total]
+    };
+    if split_pass(u.len()) {
+        let h = u.len() / 2;
+        let (u0, u1) = u.split_at_mut(h);
+        let (a, b) = rayon::join(
+            || pass(u0, &u_start[..h], &delta[..h], sums),
+            || pass(u1, &u_start[h..], &delta[h..], [0.0; 3]),
+        );
+        [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+    } else {
+        pass(u, u_start, delta, sums)
+    }
+}
+
 /// Two or more deformable bodies are updated side by side (boundary
 /// values, gradient and stress, residual) when the smallest has this many
 /// cells.
@@ -318,9 +416,21 @@ pub struct SegregatedSolver {
 /// Component `c` of every deformable body's cell residual into the global
 /// vector `out` (at the body's offset).
 fn gather_residual(bodies: &[Body], c: usize, out: &mut [f64]) {
+    let gather = |out: &mut [f64], residual: &[Vector]| {
+        for (o, r) in out.iter_mut().zip(residual) {
+            *o = r[c];
+        }
+    };
     for b in bodies.iter().filter(|b| !b.rigid) {
-        for (i, r) in b.momentum.residual.iter().enumerate() {
-            out[b.offset + i] = r[c];
+        let residual = &b.momentum.residual[..];
+        let out = &mut out[b.offset..b.offset + residual.len()];
+        if split_pass(residual.len()) {
+            let h = residual.len() / 2;
+            let (o0, o1) = out.split_at_mut(h);
+            let (r0, r1) = residual.split_at(h);
+            rayon::join(|| gather(o0, r0), || gather(o1, r1));
+        } else {
+            gather(out, residual);
         }
     }
 }
@@ -1039,17 +1149,15 @@ impl SegregatedSolver {
         for b in bodies.iter_mut().filter(|b| !b.rigid) {
             let off = b.offset;
             let (u_now, u_start) = b.momentum.u_and_start_mut();
-            for (i, (u, &u0)) in u_now.iter_mut().zip(u_start).enumerate() {
-                let d = self.delta[off + i];
-                // accelerated: mixed by `mix_iterates`
-                if !accelerating {
-                    *u += d * applied;
-                }
-                // measured at the configured relaxation (CYCLE_PATIENCE)
-                norm_delta += (d * self.relaxation).norm_squared();
-                norm_incr += (*u - u0).norm_squared();
-                norm_total += u.norm_squared();
-            }
+            let delta = &self.delta[off..off + u_now.len()];
+            let how = (accelerating, applied, self.relaxation);
+            [norm_delta, norm_incr, norm_total] = apply_correction(
+                u_now,
+                u_start,
+                delta,
+                how,
+                [norm_delta, norm_incr, norm_total],
+            );
         }
         // every cell moved by the largest body's extent
         let body_scale = self.length_scale * (self.n as f64).sqrt();
@@ -1149,9 +1257,7 @@ impl SegregatedSolver {
             result?;
             for (&c, i) in job_components[j][..job_len[j]].iter().zip(info) {
                 linear_iterations += i.iterations;
-                for (d, &x) in self.delta.iter_mut().zip(&self.x_each[c]) {
-                    d[c] = x;
-                }
+                scatter_component(&mut self.delta, &self.x_each[c], c);
             }
         }
         Ok(linear_iterations)
@@ -1175,9 +1281,7 @@ impl SegregatedSolver {
             let info = self.solvers[mi].solve(&self.matrices[mi], &self.rhs, &mut self.x);
             self.times.lap(Phase::LinearSolve, start);
             linear_iterations += info?.iterations;
-            for (d, &x) in self.delta.iter_mut().zip(&self.x) {
-                d[c] = x;
-            }
+            scatter_component(&mut self.delta, &self.x, c);
         }
         Ok(linear_iterations)
     }
@@ -1265,7 +1369,10 @@ impl SegregatedSolver {
         for b in bodies.iter().filter(|b| !b.rigid) {
             let (len_x, len_f) = (iterate_state_len(b), mixed_state_len(b));
             read_mixed_state(b, &mut x[at_x..at_x + len_x]);
-            f[at_f + len_x..at_f + len_f].copy_from_slice(gradient_columns(&b.momentum.grad_u));
+            copy_cells(
+                &mut f[at_f + len_x..at_f + len_f],
+                gradient_columns(&b.momentum.grad_u),
+            );
             at_x += len_x;
             at_f += len_f;
         }
@@ -1300,8 +1407,8 @@ impl SegregatedSolver {
         let (mut at_x, mut at_f) = (self.n, self.n);
         for b in bodies.iter().filter(|b| !b.rigid) {
             let (off, nc) = (b.offset, b.mesh.n_cells);
-            x[off..off + nc].copy_from_slice(&b.momentum.u);
-            f[off..off + nc].copy_from_slice(&self.delta[off..off + nc]);
+            copy_cells(&mut x[off..off + nc], &b.momentum.u);
+            copy_cells(&mut f[off..off + nc], &self.delta[off..off + nc]);
             // the state this iteration left, less the one it started from
             // (the gradient's: in f since `snapshot_mixed_state`)
             let (len_x, len_f) = (iterate_state_len(b), mixed_state_len(b));
@@ -1311,12 +1418,7 @@ impl SegregatedSolver {
             for (f, x) in boundary.iter_mut().zip(&x[at_x..at_x + len_x]) {
                 *f = (*f - x) / beta;
             }
-            for (f, g) in gradient
-                .iter_mut()
-                .zip(gradient_columns(&b.momentum.grad_u))
-            {
-                *f = (g - *f) / beta;
-            }
+            gradient_change(gradient, gradient_columns(&b.momentum.grad_u), beta);
             at_x += len_x;
             at_f += len_f;
         }

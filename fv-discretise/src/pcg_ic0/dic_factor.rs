@@ -71,6 +71,13 @@ impl DicFactor {
     }
 }
 
+impl DicFactor {
+    /// `A`'s strict lower triangle (the forward sweep's `E`).
+    pub(crate) fn lower(&self) -> &TriCsr {
+        &self.lower
+    }
+}
+
 impl Ic0Sweeps for DicFactor {
     fn inv_diag(&self) -> &[f64] {
         &self.inv_diag

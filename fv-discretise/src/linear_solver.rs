@@ -81,6 +81,25 @@ pub enum LinearSolverError {
     Direct(String),
 }
 
+impl LinearSolverError {
+    /// A conjugate-gradient iteration whose curvature `pᵀAp` is not
+    /// positive: a breakdown (the matrix is not positive definite), or a
+    /// non-finite iterate.
+    pub fn pcg_curvature(iteration: usize, pq: f64) -> Self {
+        if pq.is_finite() {
+            LinearSolverError::Breakdown {
+                method: "PCG",
+                iteration,
+                reason: "pᵀAp ≤ 0: matrix not positive definite",
+            }
+        } else {
+            LinearSolverError::NonFinite {
+                what: "PCG iteration",
+            }
+        }
+    }
+}
+
 /// Outcome of one linear solve.
 ///
 /// Residuals are absolute Euclidean norms: `initial_residual = ‖b − A x₀‖₂`

@@ -422,17 +422,7 @@ fn pcg<F: Ic0Sweeps>(
         // p = z + β p_old, q = A p, pᵀq.
         let pq = fac.backward_pass(a, w, p, x, q, alpha, (it > 1).then_some(beta));
         if !(pq > 0.0) {
-            return Err(if pq.is_finite() {
-                LinearSolverError::Breakdown {
-                    method: "PCG",
-                    iteration: it,
-                    reason: "pᵀAp ≤ 0: matrix not positive definite",
-                }
-            } else {
-                LinearSolverError::NonFinite {
-                    what: "PCG iteration",
-                }
-            });
+            return Err(LinearSolverError::pcg_curvature(it, pq));
         }
         alpha = rz / pq;
         // Forward pass, rows ascending: r −= α q, ‖r‖², w = (D̃ + E)⁻¹ r, rᵀz.

@@ -147,16 +147,22 @@ fn split_pass(n: usize) -> bool {
     n >= PARALLEL_PASS_CELLS && rayon::current_num_threads() > 1
 }
 
-/// `dst = src`, in halves on two threads for long vectors.
-fn copy_cells(dst: &mut [Vector], src: &[Vector]) {
+/// `pass(dst, src)` over the cells, in halves on two threads for long
+/// vectors (`split_pass`); `src` as long as `dst`.
+fn in_halves<A: Send, B: Sync>(dst: &mut [A], src: &[B], pass: impl Fn(&mut [A], &[B]) + Sync) {
     if split_pass(dst.len()) {
         let h = dst.len() / 2;
         let (d0, d1) = dst.split_at_mut(h);
         let (s0, s1) = src.split_at(h);
-        rayon::join(|| d0.copy_from_slice(s0), || d1.copy_from_slice(s1));
+        rayon::join(|| pass(d0, s0), || pass(d1, s1));
     } else {
-        dst.copy_from_slice(src);
+        pass(dst, src);
     }
+}
+
+/// `dst = src`, in halves on two threads for long vectors.
+fn copy_cells(dst: &mut [Vector], src: &[Vector]) {
+    in_halves(dst, src, |d, s| d.copy_from_slice(s));
 }
 
 /// The gradient's change in the acceleration's correction: `f` (the
@@ -168,14 +174,7 @@ fn gradient_change(f: &mut [Vector], g: &[Vector], beta: f64) {
             *f = (g - *f) / beta;
         }
     };
-    if split_pass(f.len()) {
-        let h = f.len() / 2;
-        let (f0, f1) = f.split_at_mut(h);
-        let (g0, g1) = g.split_at(h);
-        rayon::join(|| change(f0, g0), || change(f1, g1));
-    } else {
-        change(f, g);
-    }
+    in_halves(f, g, change);
 }
 
 /// Component `c` of every correction `delta` set to `x`.
@@ -185,14 +184,7 @@ fn scatter_component(delta: &mut [Vector], x: &[f64], c: usize) {
             d[c] = x;
         }
     };
-    if split_pass(delta.len()) {
-        let h = delta.len() / 2;
-        let (d0, d1) = delta.split_at_mut(h);
-        let (x0, x1) = x.split_at(h);
-        rayon::join(|| scatter(d0, x0), || scatter(d1, x1));
-    } else {
-        scatter(delta, x);
-    }
+    in_halves(delta, x, scatter);
 }
 
 /// The correction `delta` applied to the cells `u` (times `applied`,
@@ -424,14 +416,7 @@ fn gather_residual(bodies: &[Body], c: usize, out: &mut [f64]) {
     for b in bodies.iter().filter(|b| !b.rigid) {
         let residual = &b.momentum.residual[..];
         let out = &mut out[b.offset..b.offset + residual.len()];
-        if split_pass(residual.len()) {
-            let h = residual.len() / 2;
-            let (o0, o1) = out.split_at_mut(h);
-            let (r0, r1) = residual.split_at(h);
-            rayon::join(|| gather(o0, r0), || gather(o1, r1));
-        } else {
-            gather(out, residual);
-        }
+        in_halves(out, residual, gather);
     }
 }
 

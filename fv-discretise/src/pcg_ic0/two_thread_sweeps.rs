@@ -258,17 +258,7 @@ fn iterate(
     for it in 1..=params.max_iterations {
         let pq = backward(pass, w, p, x, q, alpha, (it > 1).then_some(beta));
         if !(pq > 0.0) {
-            return Err(if pq.is_finite() {
-                LinearSolverError::Breakdown {
-                    method: "PCG",
-                    iteration: it,
-                    reason: "pᵀAp ≤ 0: matrix not positive definite",
-                }
-            } else {
-                LinearSolverError::NonFinite {
-                    what: "PCG iteration",
-                }
-            });
+            return Err(LinearSolverError::pcg_curvature(it, pq));
         }
         alpha = rz / pq;
         let (rz_new, rr) = forward(pass, r, q, w, Some(alpha));

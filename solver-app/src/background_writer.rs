@@ -3,10 +3,16 @@
 //! increment is solved, on the core the solve leaves idle in its serial
 //! parts (the incomplete-Cholesky sweeps, the contact search).
 //!
-//! One increment at most is in flight: handing over the next waits for the
-//! writer to take it (a rendezvous channel), so the copies cost the memory
-//! of one increment's fields. [`BackgroundWriter::close`] (or dropping the
-//! writer) waits for the write under way: a run that ends, fails or is
+//! The channel holds [`QUEUED_JOBS`] jobs: one increment's history row,
+//! fields, restart state and the removal of the previous restart state go
+//! over without waiting, so the solver goes on with the next increment
+//! while they are written. With a rendezvous channel each of those hand-
+//! overs waited for the write before it, and the solver's thread wrote in
+//! all but name: on curved beams (63 increments of 1,000 cells) 1.1 s of a
+//! 5.2 s run. When the writer falls behind, the solver waits at the next
+//! increment's hand-over: at most one increment's fields are queued beside
+//! the one being written. [`BackgroundWriter::close`] (or dropping the
+//! writer) waits for the writes handed over: a run that ends, fails or is
 //! interrupted leaves every increment handed over on disk.
 use std::sync::mpsc::{sync_channel, SyncSender};
 use std::thread::JoinHandle;
@@ -64,6 +70,10 @@ pub struct OwnedIncrement {
     pub bodies: Vec<OwnedBody>,
 }
 
+/// Jobs the channel holds: those of one increment (history row, fields,
+/// restart state, removal of the previous restart state).
+const QUEUED_JOBS: usize = 4;
+
 enum Job {
     Increment(OwnedIncrement),
     History {
@@ -87,7 +97,7 @@ pub struct BackgroundWriter {
 impl BackgroundWriter {
     /// Moves `writer` to a thread of its own.
     pub fn start(writer: ResultsWriter) -> Result<Self, OutputError> {
-        let (jobs, inbox) = sync_channel::<Job>(0);
+        let (jobs, inbox) = sync_channel::<Job>(QUEUED_JOBS);
         let worker = std::thread::Builder::new()
             .name("fvc-results".into())
             .spawn(move || {
@@ -112,8 +122,8 @@ impl BackgroundWriter {
         })
     }
 
-    /// Hands increment `inc` over (waits while the previous one is still
-    /// being written). An error of an earlier write is returned here.
+    /// Hands increment `inc` over (waits while the queue is full). An error
+    /// of an earlier write is returned here or by a later call.
     pub fn write_increment(&mut self, inc: OwnedIncrement) -> Result<(), OutputError> {
         self.send(Job::Increment(inc))
     }
@@ -291,7 +301,7 @@ mod tests {
         let w = ResultsWriter::create(dir.path(), "t", &[("tet", &mesh)]).unwrap();
         let mut bg = BackgroundWriter::start(w).unwrap();
         bg.write_increment(tet_increment(1, "tet")).unwrap();
-        // the rendezvous hands this one over; its failure shows later
+        // handed over; its failure shows later
         bg.write_increment(tet_increment(2, "cube")).unwrap();
         let e = bg
             .write_history(&["time"], &[0.5])

@@ -66,6 +66,20 @@ fn budgeted_restart(restart: usize, n: usize, cells: usize) -> usize {
     restart.min(vectors.saturating_sub(1).max(MIN_BUDGETED_RESTART))
 }
 
+/// `"auto"` preconditions a plane (or axisymmetric) problem of at most
+/// this many unknowns with the assembled Jacobian from its first Newton
+/// step, not only after a step the segregated operator served badly.
+/// Measured 2026-11-30, wall time auto before → from the start (unknowns):
+/// curved beams μ = 0 / 0.3 / 0.6 2.92 / 4.38 / 3.68 → 1.74 / 3.80 / 2.95 s
+/// (1,400; Newton iterations in the run 394 / 628 / 582 → 294 / 609 / 553);
+/// the axisymmetric concentric spheres (2,880) failed at 5.6 mm, buckling,
+/// and now run to the end (6.1 s); die drawing (302) and the concentric
+/// cylinders (1,800) unchanged. Above: the factorisation fills in and
+/// costs more than the Krylov iterations it saves — Hertz coarse (3,356)
+/// 0.05 → 0.13 s, rigid-cylinder indent (7,388) 0.15 → 0.79 s, Hertz fine
+/// (13,172) 0.26 → 1.04 s.
+pub const START_JACOBIAN_LIMIT: usize = 3_000;
+
 /// The Newton–Krylov method and its workspaces (built once per run).
 pub struct NewtonKrylovSolver {
     newton: NewtonKrylov,
@@ -146,13 +160,23 @@ impl NewtonKrylovSolver {
             },
             ..attempt_params
         };
+        let solved = layout.unsolved.iter().filter(|u| !**u).count();
+        let start_with_jacobian = preconditioning == Preconditioning::Jacobian
+            || (preconditioning == Preconditioning::Auto
+                && solved <= 2
+                && solved * layout.n_nodes <= START_JACOBIAN_LIMIT);
+        if preconditioning == Preconditioning::Auto && start_with_jacobian {
+            notes.push(format!(
+                "preconditioner: the assembled Jacobian from the start, a plane problem of {} unknowns (at most {START_JACOBIAN_LIMIT} are factorised from the first step; [solver] linear.preconditioner = \"auto\")",
+                solved * layout.n_nodes
+            ));
+        }
         NewtonKrylovSolver {
             newton: NewtonKrylov::new(n, attempt_params),
             attempt_params,
             final_attempt_params,
             operator: SegregatedOperator::new(bodies, &layout, direct),
-            jacobian: (preconditioning == Preconditioning::Jacobian)
-                .then(|| AssembledJacobian::new(bodies, &layout)),
+            jacobian: start_with_jacobian.then(|| AssembledJacobian::new(bodies, &layout)),
             preconditioning,
             work: ResidualWork::new(bodies, &layout),
             params: MomentumParams {

@@ -5,8 +5,10 @@ use std::fmt;
 /// The preconditioners of Newton–Krylov.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Preconditioning {
-    /// `"auto"`: the segregated operator, switched for the rest of the
-    /// run to the assembled Jacobian when a linear solve needs more than
+    /// `"auto"`: the assembled Jacobian from the start on a small
+    /// two-dimensional problem ([`super::START_JACOBIAN_LIMIT`]); else the
+    /// segregated operator, switched for the rest of the run to the
+    /// assembled Jacobian when a linear solve needs more than
     /// [`SWITCH_KRYLOV_ITERATIONS`] Krylov iterations per Newton step, the
     /// problem is two-dimensional (plane or axisymmetric) and the system
     /// is small enough to factorise ([`super::jacobian::LU_LIMIT`]).

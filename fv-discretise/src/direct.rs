@@ -6,13 +6,19 @@
 //! every numeric factorisation of a matrix with the same pattern (same
 //! [`CsrMatrix::pattern_id`], or an equal pattern). The CSR → CSC value
 //! permutation is cached with it, so refactorising costs one scatter plus
-//! faer's numeric factorisation. Solving uses faer's `Solve` trait, which
-//! allocates its scratch per call (negligible next to the triangular solves).
+//! faer's numeric factorisation. The LU goes through faer's low-level
+//! interface (`faer::sparse::linalg::lu`): its numeric factors and its
+//! scratch are kept and refilled, not allocated anew per factorisation and
+//! per solve as faer's `Lu::try_new_with_symbolic` and `Solve` do (on the
+//! Newton preconditioner of curved beams, refactorised hundreds of times,
+//! those allocations and their page faults were a tenth of the LU's time).
 
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::solvers::Solve;
-use faer::sparse::linalg::solvers::{Llt, Lu, SymbolicLlt, SymbolicLu};
+use faer::sparse::linalg::lu::{self as sparse_lu, LuRef, NumericLu};
+use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
-use faer::{MatMut, Side};
+use faer::{Conj, MatMut, Side};
 
 use crate::csr::CsrMatrix;
 use crate::linear_solver::{
@@ -33,8 +39,8 @@ pub enum DirectMethod {
 enum Symbolic {
     /// Cholesky.
     Llt(SymbolicLlt<usize>),
-    /// LU.
-    Lu(SymbolicLu<usize>),
+    /// LU (faer's low-level symbolic factors).
+    Lu(Box<sparse_lu::SymbolicLu<usize>>),
 }
 
 /// Numeric factorisation of either kind.
@@ -42,8 +48,41 @@ enum Symbolic {
 enum Numeric {
     /// Cholesky.
     Llt(Llt<usize, f64>),
-    /// LU (boxed: much larger than the Cholesky variant).
-    Lu(Box<Lu<usize, f64>>),
+    /// LU: the factors are in [`DirectSolver::lu_numeric`].
+    Lu,
+}
+
+/// faer's scratch memory with the size it was made for (cloned anew).
+struct Scratch {
+    size: StackReq,
+    buffer: MemBuffer,
+}
+
+impl Scratch {
+    fn new(size: StackReq) -> Self {
+        Scratch {
+            size,
+            buffer: MemBuffer::new(size),
+        }
+    }
+
+    fn try_new(size: StackReq) -> Result<Self, LinearSolverError> {
+        let buffer =
+            MemBuffer::try_new(size).map_err(|e| LinearSolverError::Direct(format!("{e:?}")))?;
+        Ok(Scratch { size, buffer })
+    }
+}
+
+impl Clone for Scratch {
+    fn clone(&self) -> Self {
+        Scratch::new(self.size)
+    }
+}
+
+impl std::fmt::Debug for Scratch {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "Scratch({:?})", self.size)
+    }
 }
 
 /// Sparse direct solver (faer) behind the [`LinearSolver`] trait, reusing the symbolic factorisation.
@@ -67,6 +106,10 @@ pub struct DirectSolver {
     symbolic: Option<Symbolic>,
     /// Last numeric factorisation.
     numeric: Option<Numeric>,
+    /// LU factors, refilled by every numeric factorisation.
+    lu_numeric: NumericLu<usize, f64>,
+    /// Scratch of the LU's numeric factorisation and solves.
+    lu_scratch: Scratch,
     /// Residual work vector.
     r: Vec<f64>,
     /// Diagnostics (the shift is always 0).
@@ -86,6 +129,8 @@ impl DirectSolver {
             csc_values: Vec::new(),
             symbolic: None,
             numeric: None,
+            lu_numeric: NumericLu::new(),
+            lu_scratch: Scratch::new(StackReq::EMPTY),
             r: Vec::new(),
             info: FactorisationInfo::default(),
         }
@@ -128,10 +173,16 @@ impl DirectSolver {
                 SymbolicLlt::try_new(csc.as_ref(), Side::Lower)
                     .map_err(|e| LinearSolverError::Direct(format!("{e:?}")))?,
             ),
-            DirectMethod::Lu => Symbolic::Lu(
-                SymbolicLu::try_new(csc.as_ref())
-                    .map_err(|e| LinearSolverError::Direct(format!("{e:?}")))?,
-            ),
+            DirectMethod::Lu => {
+                let s = sparse_lu::factorize_symbolic_lu(csc.as_ref(), Default::default())
+                    .map_err(|e| LinearSolverError::Direct(format!("{e:?}")))?;
+                let par = faer::get_global_parallelism();
+                let need = s
+                    .factorize_numeric_lu_scratch::<f64>(par, Default::default())
+                    .or(s.solve_in_place_scratch::<f64>(1, par));
+                self.lu_scratch = Scratch::try_new(need)?;
+                Symbolic::Lu(Box::new(s))
+            }
         };
         self.csc_values.clear();
         self.csc_values.resize(a.nnz(), 0.0);
@@ -166,10 +217,17 @@ impl DirectSolver {
                 Llt::try_new_with_symbolic(s.clone(), mat, Side::Lower)
                     .map_err(|e| LinearSolverError::Direct(format!("{e:?}")))?,
             ),
-            Symbolic::Lu(s) => Numeric::Lu(Box::new(
-                Lu::try_new_with_symbolic(s.clone(), mat)
-                    .map_err(|e| LinearSolverError::Direct(format!("{e:?}")))?,
-            )),
+            Symbolic::Lu(s) => {
+                s.factorize_numeric_lu(
+                    &mut self.lu_numeric,
+                    mat,
+                    faer::get_global_parallelism(),
+                    MemStack::new(&mut self.lu_scratch.buffer),
+                    Default::default(),
+                )
+                .map_err(|e| LinearSolverError::Direct(format!("{e:?}")))?;
+                Numeric::Lu
+            }
         };
         self.numeric = Some(numeric);
         self.r.resize(a.n(), 0.0);
@@ -187,20 +245,10 @@ impl DirectSolver {
         b: &[f64],
         x: &mut [f64],
     ) -> Result<SolveInfo, LinearSolverError> {
-        let Some(numeric) = &self.numeric else {
-            return Err(LinearSolverError::NotFactorised);
-        };
         let n = self.r.len();
         check_len("matrix", a.n(), n)?;
-        check_len("b", b.len(), n)?;
-        check_len("x", x.len(), n)?;
         let r0 = a.residual(b, x, &mut self.r);
-        x.copy_from_slice(b);
-        let xm = MatMut::from_column_major_slice_mut(x, n, 1);
-        match numeric {
-            Numeric::Llt(f) => f.solve_in_place(xm),
-            Numeric::Lu(f) => f.solve_in_place(xm),
-        }
+        self.substitute(b, x)?;
         let r1 = a.residual(b, x, &mut self.r);
         Ok(SolveInfo {
             iterations: 1,
@@ -208,6 +256,32 @@ impl DirectSolver {
             final_residual: r1,
             converged: r1.is_finite(),
         })
+    }
+
+    /// x = A⁻¹ b by the forward and backward substitutions of the last
+    /// factorisation, without the residual norms of [`Self::solve`] (a
+    /// preconditioner's application).
+    pub fn substitute(&mut self, b: &[f64], x: &mut [f64]) -> Result<(), LinearSolverError> {
+        let (Some(numeric), Some(symbolic)) = (&self.numeric, &self.symbolic) else {
+            return Err(LinearSolverError::NotFactorised);
+        };
+        let n = self.r.len();
+        check_len("b", b.len(), n)?;
+        check_len("x", x.len(), n)?;
+        x.copy_from_slice(b);
+        let xm = MatMut::from_column_major_slice_mut(x, n, 1);
+        match (numeric, symbolic) {
+            (Numeric::Llt(f), _) => f.solve_in_place(xm),
+            (Numeric::Lu, Symbolic::Lu(s)) => LuRef::new_unchecked(s, &self.lu_numeric)
+                .solve_in_place_with_conj(
+                    Conj::No,
+                    xm,
+                    faer::get_global_parallelism(),
+                    MemStack::new(&mut self.lu_scratch.buffer),
+                ),
+            (Numeric::Lu, Symbolic::Llt(_)) => return Err(LinearSolverError::NotFactorised),
+        }
+        Ok(())
     }
 }
 

@@ -329,7 +329,7 @@ impl AssembledJacobian {
     pub fn apply(&mut self, r: &[f64], z: &mut [f64]) -> Result<(), LinearSolverError> {
         self.gather(r);
         match &mut self.factor {
-            Factor::Lu(s) => s.solve(&self.scalar, &self.rs, &mut self.zs).map(|_| ())?,
+            Factor::Lu(s) => s.substitute(&self.rs, &mut self.zs)?,
             Factor::Ilu(s) => s.apply_preconditioner(&self.rs, &mut self.zs)?,
         };
         self.scatter(z);

@@ -93,7 +93,7 @@ impl Factor {
                 };
                 s.solve(a, r, z, &p).map(|i| i.iterations)
             }
-            Factor::Direct(s) => s.solve(a, r, z).map(|_| 1),
+            Factor::Direct(s) => s.substitute(r, z).map(|_| 1),
             Factor::Multigrid(s) => s.apply_preconditioner(a, r, z).map(|_| 1),
         }
     }

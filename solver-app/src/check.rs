@@ -95,7 +95,7 @@ pub fn contact_report(contacts: &crate::contact_coupling::ContactSet) -> Vec<Str
 
 /// The nonlinear method and the settings it chose, and why (`fvc check`
 /// and the first lines of a run's log).
-pub fn solver_report(case: &Case) -> String {
+pub fn solver_report(case: &Case, bodies: &[Body]) -> String {
     use crate::case::NEWTON_FINAL_ATTEMPT_ITERATIONS;
     use fv_nonlinear::NonlinearMethod;
     let s = &case.solver;
@@ -127,9 +127,16 @@ pub fn solver_report(case: &Case) -> String {
                     NEWTON_FINAL_ATTEMPT_ITERATIONS.max(s.max_outer)
                 )
             };
+            let auto = if s.linear.preconditioner
+                == crate::newton::preconditioning::Preconditioning::Auto
+            {
+                format!(": {}", crate::newton::auto_preconditioner_report(bodies))
+            } else {
+                String::new()
+            };
             let _ = write!(
                 out,
-                " (residual relative to the cells' force scale); at most {} Newton iterations per attempt{last}; GMRES({}) to Eisenstat–Walker forcing terms ≤ {}, preconditioner \"{}\"; a failed step is cut back up to four times; first iterate: the linearised response to the step (`predictor` is the segregated method's)",
+                " (residual relative to the cells' force scale); at most {} Newton iterations per attempt{last}; GMRES({}) to Eisenstat–Walker forcing terms ≤ {}, preconditioner \"{}\"{auto}; a failed step is cut back up to four times; first iterate: the linearised response to the step (`predictor` is the segregated method's)",
                 s.max_outer, s.linear.restart, s.linear.tolerance, s.linear.preconditioner
             );
             return out;

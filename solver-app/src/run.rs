@@ -294,7 +294,7 @@ fn run_case_noting(
         count(cells, "cell", "cells"),
         count(case.time.steps, "increment", "increments")
     ));
-    log.info(&crate::check::solver_report(case));
+    log.info(&crate::check::solver_report(case, &bodies));
     for line in crate::check::contact_report(&contacts) {
         log.info(&line);
     }

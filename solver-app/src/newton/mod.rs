@@ -80,6 +80,28 @@ fn budgeted_restart(restart: usize, n: usize, cells: usize) -> usize {
 /// (13,172) 0.26 → 1.04 s.
 pub const START_JACOBIAN_LIMIT: usize = 3_000;
 
+/// Whether `"auto"` preconditions with the assembled Jacobian from the
+/// first step ([`START_JACOBIAN_LIMIT`]), and the solved unknowns.
+fn auto_starts_assembled(layout: &StateLayout) -> (bool, usize) {
+    let solved = layout.unsolved.iter().filter(|u| !**u).count();
+    let unknowns = solved * layout.n_nodes;
+    (solved <= 2 && unknowns <= START_JACOBIAN_LIMIT, unknowns)
+}
+
+/// What `"auto"` preconditions the bodies' Newton steps with, and why
+/// (`fvc check` and the run's log).
+pub fn auto_preconditioner_report(bodies: &[Body]) -> String {
+    let layout = StateLayout::new(bodies, unsolved_directions(bodies));
+    match auto_starts_assembled(&layout) {
+        (true, n) => format!(
+            "the assembled Jacobian, factorised, from the first step (a plane problem of {n} unknowns, at most {START_JACOBIAN_LIMIT})"
+        ),
+        (false, n) => format!(
+            "the segregated operator ({n} unknowns; more than {START_JACOBIAN_LIMIT}, or three-dimensional), switched to the assembled Jacobian after a Newton step that needs more than {SWITCH_KRYLOV_ITERATIONS} Krylov iterations when it can be factorised"
+        ),
+    }
+}
+
 /// The Newton–Krylov method and its workspaces (built once per run).
 pub struct NewtonKrylovSolver {
     newton: NewtonKrylov,
@@ -160,17 +182,8 @@ impl NewtonKrylovSolver {
             },
             ..attempt_params
         };
-        let solved = layout.unsolved.iter().filter(|u| !**u).count();
         let start_with_jacobian = preconditioning == Preconditioning::Jacobian
-            || (preconditioning == Preconditioning::Auto
-                && solved <= 2
-                && solved * layout.n_nodes <= START_JACOBIAN_LIMIT);
-        if preconditioning == Preconditioning::Auto && start_with_jacobian {
-            notes.push(format!(
-                "preconditioner: the assembled Jacobian from the start, a plane problem of {} unknowns (at most {START_JACOBIAN_LIMIT} are factorised from the first step; [solver] linear.preconditioner = \"auto\")",
-                solved * layout.n_nodes
-            ));
-        }
+            || (preconditioning == Preconditioning::Auto && auto_starts_assembled(&layout).0);
         NewtonKrylovSolver {
             newton: NewtonKrylov::new(n, attempt_params),
             attempt_params,

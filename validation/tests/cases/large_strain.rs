@@ -71,15 +71,23 @@ value = {{ table = [[0.0, 0.0], [1.0, 0.5]] }}
 }
 
 /// Plane stress at finite strain (`plane_stress = true`, a plate one cell
-/// thick along z): stretched to 1.5 and compressed to 0.6, the plate is in
+/// thick along z): stretched to 1.5 and compressed to 0.7, the plate is in
 /// uniaxial stress, so its lateral stretch, its thickness stretch and the
 /// force per unit initial area are those of the three-dimensional
 /// closed form (the small-strain substitution of λ it replaces gave the
 /// lateral stretch 0.858 instead of 0.888 at 1.5).
+///
+/// Not compressed to 0.6 (as until 2026-11-30): the 6 × 6 plate leaves
+/// the homogeneous branch between λ = 0.66 and 0.64. Newton with the
+/// factorised Jacobian (the default on this plane problem since then)
+/// finds the bifurcated equilibrium there — at 0.6 a shear reaction on
+/// xmax of 0.33 and an axial force 5 % under the closed form, in 10 or 20
+/// increments alike — while the segregated preconditioner, which keeps
+/// the iterates symmetric, stayed on the homogeneous branch, a saddle.
 #[test]
 fn neo_hookean_plane_stress_is_uniaxial_stress() {
     let (mu, bulk) = moduli();
-    for stretch in [1.5, 0.6] {
+    for stretch in [1.5, 0.7] {
         let case = format!(
             r#"
 title = "plane-stress"

@@ -245,8 +245,13 @@ impl DirectSolver {
         b: &[f64],
         x: &mut [f64],
     ) -> Result<SolveInfo, LinearSolverError> {
+        if self.numeric.is_none() {
+            return Err(LinearSolverError::NotFactorised);
+        }
         let n = self.r.len();
         check_len("matrix", a.n(), n)?;
+        check_len("b", b.len(), n)?;
+        check_len("x", x.len(), n)?;
         let r0 = a.residual(b, x, &mut self.r);
         self.substitute(b, x)?;
         let r1 = a.residual(b, x, &mut self.r);

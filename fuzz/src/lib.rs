@@ -47,7 +47,7 @@ pub fn case(data: &[u8], fixtures: &Path) -> Result<(), String> {
     let (bodies, contacts) =
         solver_app::run::set_up_with_contacts(&case).map_err(|e| e.to_string())?;
     let _ = solver_app::check::mesh_report(&case, &bodies);
-    let _ = solver_app::check::solver_report(&case, &bodies);
+    let _ = solver_app::check::solver_report(&case, &bodies, &contacts);
     solver_app::run::check_support(&case, bodies, contacts).map_err(|e| e.to_string())?;
     Ok(())
 }

@@ -24,7 +24,7 @@ fn residual_evaluation(c: &mut Criterion) {
     let case = case(64);
     let mut bodies = bodies(&case);
     let mut contacts = ContactSet::default();
-    let mut solver = NewtonKrylovSolver::new(&bodies, &case.solver);
+    let mut solver = NewtonKrylovSolver::new(&bodies, &contacts, &case.solver);
     solver.begin_increment(&mut bodies);
     let n = solver.state_len();
     let x = vec![0.0; n];
@@ -48,7 +48,7 @@ fn increment(c: &mut Criterion) {
             || bodies(&case),
             |mut bodies| {
                 let mut contacts = ContactSet::default();
-                let mut solver = NewtonKrylovSolver::new(&bodies, &case.solver);
+                let mut solver = NewtonKrylovSolver::new(&bodies, &contacts, &case.solver);
                 let info = solver.solve_increment(&mut bodies, &mut contacts, &mut |_, _| {
                     std::ops::ControlFlow::Continue(())
                 });

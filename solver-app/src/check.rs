@@ -95,7 +95,11 @@ pub fn contact_report(contacts: &crate::contact_coupling::ContactSet) -> Vec<Str
 
 /// The nonlinear method and the settings it chose, and why (`fvc check`
 /// and the first lines of a run's log).
-pub fn solver_report(case: &Case, bodies: &[Body]) -> String {
+pub fn solver_report(
+    case: &Case,
+    bodies: &[Body],
+    contacts: &crate::contact_coupling::ContactSet,
+) -> String {
     use crate::case::NEWTON_FINAL_ATTEMPT_ITERATIONS;
     use fv_nonlinear::NonlinearMethod;
     let s = &case.solver;
@@ -130,7 +134,10 @@ pub fn solver_report(case: &Case, bodies: &[Body]) -> String {
             let auto = if s.linear.preconditioner
                 == crate::newton::preconditioning::Preconditioning::Auto
             {
-                format!(": {}", crate::newton::auto_preconditioner_report(bodies))
+                format!(
+                    ": {}",
+                    crate::newton::auto_preconditioner_report(bodies, contacts)
+                )
             } else {
                 String::new()
             };

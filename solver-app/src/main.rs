@@ -127,7 +127,7 @@ fn main() -> ExitCode {
                 Ok((bodies, contacts)) => {
                     let mesh = solver_app::check::mesh_report(&case, &bodies);
                     stdout_line(mesh.trim_end_matches('\n'));
-                    stdout_line(&solver_app::check::solver_report(&case, &bodies));
+                    stdout_line(&solver_app::check::solver_report(&case, &bodies, &contacts));
                     for line in solver_app::check::contact_report(&contacts) {
                         stdout_line(&line);
                     }

@@ -87,10 +87,16 @@ pub trait NonlinearSolver {
 /// The solver of `settings.nonlinear` for the bodies (whose contact
 /// conditions the contact set prepared for that method:
 /// [`prepare_contact_conditions`]).
-pub fn build(bodies: &[Body], settings: &SolverSettings) -> Box<dyn NonlinearSolver> {
+pub fn build(
+    bodies: &[Body],
+    contacts: &ContactSet,
+    settings: &SolverSettings,
+) -> Box<dyn NonlinearSolver> {
     match settings.nonlinear {
         NonlinearMethod::Segregated => Box::new(SegregatedSolver::new(bodies, settings)),
-        NonlinearMethod::NewtonKrylov => Box::new(NewtonKrylovSolver::new(bodies, settings)),
+        NonlinearMethod::NewtonKrylov => {
+            Box::new(NewtonKrylovSolver::new(bodies, contacts, settings))
+        }
     }
 }
 

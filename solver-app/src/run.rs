@@ -195,7 +195,7 @@ fn run_case_noting(
         NonlinearMethod::Segregated => Ok(()),
         NonlinearMethod::NewtonKrylov => SegregatedSolver::check_held(&bodies, &case.solver),
     };
-    let mut solver = nonlinear_solver::build(&bodies, &case.solver);
+    let mut solver = nonlinear_solver::build(&bodies, &contacts, &case.solver);
     // `--restart`: the state of the increment continued from, before the
     // method sets up on the meshes
     let resumed = match &opts.restart {
@@ -294,7 +294,7 @@ fn run_case_noting(
         count(cells, "cell", "cells"),
         count(case.time.steps, "increment", "increments")
     ));
-    log.info(&crate::check::solver_report(case, &bodies));
+    log.info(&crate::check::solver_report(case, &bodies, &contacts));
     for line in crate::check::contact_report(&contacts) {
         log.info(&line);
     }

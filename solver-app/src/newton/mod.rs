@@ -80,19 +80,49 @@ fn budgeted_restart(restart: usize, n: usize, cells: usize) -> usize {
 /// (13,172) 0.26 → 1.04 s.
 pub const START_JACOBIAN_LIMIT: usize = 3_000;
 
+/// A contact whose normal penalty scale is at least this stiffens the
+/// problem beyond what the segregated operator's per-component springs
+/// precondition: on a plane problem `"auto"` factorises the Jacobian from
+/// the first step whatever its size (up to [`LU_LIMIT`]). Measured on the
+/// two tubes of issue 47 (2,240 cells, 5,600 unknowns, penalty ×1000):
+/// from the segregated operator, GMRES needed 60 and then 200 Krylov
+/// iterations at the third and fourth Newton steps, the switch to the
+/// Jacobian came too late, and Newton crept at line-search steps of 0.1
+/// (41 iterations, 1.4–2.0 s); factorised from the start, 9 iterations
+/// and 0.43 s, the interface force the same to 1e-7. At ×10 the
+/// segregated operator serves (3 iterations, 0.17 s).
+pub const STIFF_PENALTY_SCALE: f64 = 100.0;
+
 /// Whether `"auto"` preconditions with the assembled Jacobian from the
-/// first step ([`START_JACOBIAN_LIMIT`]), and the solved unknowns.
-fn auto_starts_assembled(layout: &StateLayout) -> (bool, usize) {
+/// first step ([`START_JACOBIAN_LIMIT`], [`STIFF_PENALTY_SCALE`]), and the
+/// solved unknowns.
+fn auto_starts_assembled(layout: &StateLayout, contacts: &ContactSet) -> (bool, usize) {
     let solved = layout.unsolved.iter().filter(|u| !**u).count();
     let unknowns = solved * layout.n_nodes;
-    (solved <= 2 && unknowns <= START_JACOBIAN_LIMIT, unknowns)
+    let limit = if stiff_contact(contacts) {
+        LU_LIMIT
+    } else {
+        START_JACOBIAN_LIMIT
+    };
+    (solved <= 2 && unknowns <= limit, unknowns)
+}
+
+/// Whether a contact's normal penalty scale is [`STIFF_PENALTY_SCALE`] or more.
+fn stiff_contact(contacts: &ContactSet) -> bool {
+    contacts
+        .interfaces
+        .iter()
+        .any(|ci| ci.penalty_scale.value() >= STIFF_PENALTY_SCALE)
 }
 
 /// What `"auto"` preconditions the bodies' Newton steps with, and why
 /// (`fvc check` and the run's log).
-pub fn auto_preconditioner_report(bodies: &[Body]) -> String {
+pub fn auto_preconditioner_report(bodies: &[Body], contacts: &ContactSet) -> String {
     let layout = StateLayout::new(bodies, unsolved_directions(bodies));
-    match auto_starts_assembled(&layout) {
+    match auto_starts_assembled(&layout, contacts) {
+        (true, n) if stiff_contact(contacts) => format!(
+            "the assembled Jacobian, factorised, from the first step (a plane problem of {n} unknowns with a contact of penalty scale {STIFF_PENALTY_SCALE} or more)"
+        ),
         (true, n) => format!(
             "the assembled Jacobian, factorised, from the first step (a plane problem of {n} unknowns, at most {START_JACOBIAN_LIMIT})"
         ),
@@ -154,7 +184,7 @@ pub fn newton_params(settings: &SolverSettings) -> NewtonParams {
 impl NewtonKrylovSolver {
     /// The solver for the bodies (their contact patches prepared with
     /// `ContactSet::prepare_state_conditions`).
-    pub fn new(bodies: &[Body], settings: &SolverSettings) -> Self {
+    pub fn new(bodies: &[Body], contacts: &ContactSet, settings: &SolverSettings) -> Self {
         let unsolved = unsolved_directions(bodies);
         let layout = StateLayout::new(bodies, unsolved);
         let n = layout.len();
@@ -183,7 +213,8 @@ impl NewtonKrylovSolver {
             ..attempt_params
         };
         let start_with_jacobian = preconditioning == Preconditioning::Jacobian
-            || (preconditioning == Preconditioning::Auto && auto_starts_assembled(&layout).0);
+            || (preconditioning == Preconditioning::Auto
+                && auto_starts_assembled(&layout, contacts).0);
         NewtonKrylovSolver {
             newton: NewtonKrylov::new(n, attempt_params),
             attempt_params,

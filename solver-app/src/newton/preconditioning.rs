@@ -6,7 +6,9 @@ use std::fmt;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Preconditioning {
     /// `"auto"`: the assembled Jacobian from the start on a small
-    /// two-dimensional problem ([`super::START_JACOBIAN_LIMIT`]); else the
+    /// two-dimensional problem ([`super::START_JACOBIAN_LIMIT`]) or a
+    /// two-dimensional one with a stiff contact
+    /// ([`super::STIFF_PENALTY_SCALE`]); else the
     /// segregated operator, switched for the rest of the run to the
     /// assembled Jacobian when a linear solve needs more than
     /// [`SWITCH_KRYLOV_ITERATIONS`] Krylov iterations per Newton step, the

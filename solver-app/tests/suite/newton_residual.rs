@@ -52,7 +52,7 @@ fn small_strain_residual_is_affine_and_deterministic() {
     .unwrap();
     let (mut bodies, mut contacts) = set_up_with_contacts(&case).unwrap();
     prepare_contact_conditions(NonlinearMethod::NewtonKrylov, &contacts, &mut bodies);
-    let mut solver = NewtonKrylovSolver::new(&bodies, &case.solver);
+    let mut solver = NewtonKrylovSolver::new(&bodies, &contacts, &case.solver);
     for b in bodies.iter_mut() {
         b.refresh_conditions(1.0);
     }
@@ -106,7 +106,7 @@ fn finite_difference_products_match_the_affine_residual() {
     .unwrap();
     let (mut bodies, mut contacts) = set_up_with_contacts(&case).unwrap();
     prepare_contact_conditions(NonlinearMethod::NewtonKrylov, &contacts, &mut bodies);
-    let mut solver = NewtonKrylovSolver::new(&bodies, &case.solver);
+    let mut solver = NewtonKrylovSolver::new(&bodies, &contacts, &case.solver);
     for b in bodies.iter_mut() {
         b.refresh_conditions(1.0);
     }
@@ -157,7 +157,7 @@ fn probe_exact_newton_step() {
     .unwrap();
     let (mut bodies, mut contacts) = set_up_with_contacts(&case).unwrap();
     prepare_contact_conditions(NonlinearMethod::NewtonKrylov, &contacts, &mut bodies);
-    let mut solver = NewtonKrylovSolver::new(&bodies, &case.solver);
+    let mut solver = NewtonKrylovSolver::new(&bodies, &contacts, &case.solver);
     for b in bodies.iter_mut() {
         b.refresh_conditions(1.0);
     }
@@ -189,7 +189,7 @@ fn assembled_against_products(text: &str, seed: u64, x_scale: f64) -> f64 {
     .unwrap();
     let (mut bodies, mut contacts) = set_up_with_contacts(&case).unwrap();
     prepare_contact_conditions(NonlinearMethod::NewtonKrylov, &contacts, &mut bodies);
-    let mut solver = NewtonKrylovSolver::new(&bodies, &case.solver);
+    let mut solver = NewtonKrylovSolver::new(&bodies, &contacts, &case.solver);
     for b in bodies.iter_mut() {
         b.refresh_conditions(case.time.time_at(1));
     }

@@ -443,7 +443,7 @@ pub struct ContactInterface {
     /// ([`FacePosition::BoundaryValue`]).
     face_shifts: bool,
     /// Both bodies are deformable (the springs join cells of two bodies).
-    deformable_pair: bool,
+    pub deformable_pair: bool,
     /// A deformable pair with ε_n δ/K above [`STIFF_PENALTY`] (set until
     /// the penalty of the increment is localised: neither ε_n nor the
     /// geometry changes within an increment after that).

@@ -80,17 +80,22 @@ fn budgeted_restart(restart: usize, n: usize, cells: usize) -> usize {
 /// (13,172) 0.26 → 1.04 s.
 pub const START_JACOBIAN_LIMIT: usize = 3_000;
 
-/// A contact whose normal penalty scale is at least this stiffens the
-/// problem beyond what the segregated operator's per-component springs
-/// precondition: on a plane problem `"auto"` factorises the Jacobian from
-/// the first step whatever its size (up to [`LU_LIMIT`]). Measured on the
-/// two tubes of issue 47 (2,240 cells, 5,600 unknowns, penalty ×1000):
-/// from the segregated operator, GMRES needed 60 and then 200 Krylov
-/// iterations at the third and fourth Newton steps, the switch to the
-/// Jacobian came too late, and Newton crept at line-search steps of 0.1
-/// (41 iterations, 1.4–2.0 s); factorised from the start, 9 iterations
-/// and 0.43 s, the interface force the same to 1e-7. At ×10 the
-/// segregated operator serves (3 iterations, 0.17 s).
+/// A contact between two deformable bodies whose normal penalty scale is
+/// at least this stiffens the problem beyond what the segregated
+/// operator's per-component springs precondition (they keep n_c² of the
+/// spring k n⊗n joining the two bodies and drop its off-diagonal part,
+/// which grows with k where the normal turns): on a plane problem
+/// `"auto"` factorises the Jacobian from the first step whatever its size
+/// (up to [`LU_LIMIT`]). Measured on the two tubes of issue 47 (2,240
+/// cells, 5,600 unknowns, penalty ×1000): from the segregated operator,
+/// GMRES needed 60 and then 200 Krylov iterations at the third and
+/// fourth Newton steps, the switch to the Jacobian came too late, and
+/// Newton crept at line-search steps of 0.1 (41 iterations, 1.4–2.0 s);
+/// factorised from the start, 9 iterations and 0.38–0.43 s, the
+/// interface force the same to 1e-6. At ×10 the segregated operator
+/// serves (3 iterations, 0.17 s). Against a rigid flat it serves at ×100
+/// too (Hertz coarse / fine: 0.10 / 0.68 s, against 0.30 / 2.69 s
+/// factorised), so rigid pairs keep it.
 pub const STIFF_PENALTY_SCALE: f64 = 100.0;
 
 /// Whether `"auto"` preconditions with the assembled Jacobian from the
@@ -107,12 +112,13 @@ fn auto_starts_assembled(layout: &StateLayout, contacts: &ContactSet) -> (bool, 
     (solved <= 2 && unknowns <= limit, unknowns)
 }
 
-/// Whether a contact's normal penalty scale is [`STIFF_PENALTY_SCALE`] or more.
+/// Whether a contact between two deformable bodies has a normal penalty
+/// scale of [`STIFF_PENALTY_SCALE`] or more.
 fn stiff_contact(contacts: &ContactSet) -> bool {
     contacts
         .interfaces
         .iter()
-        .any(|ci| ci.penalty_scale.value() >= STIFF_PENALTY_SCALE)
+        .any(|ci| ci.deformable_pair && ci.penalty_scale.value() >= STIFF_PENALTY_SCALE)
 }
 
 /// What `"auto"` preconditions the bodies' Newton steps with, and why
@@ -121,7 +127,7 @@ pub fn auto_preconditioner_report(bodies: &[Body], contacts: &ContactSet) -> Str
     let layout = StateLayout::new(bodies, unsolved_directions(bodies));
     match auto_starts_assembled(&layout, contacts) {
         (true, n) if stiff_contact(contacts) => format!(
-            "the assembled Jacobian, factorised, from the first step (a plane problem of {n} unknowns with a contact of penalty scale {STIFF_PENALTY_SCALE} or more)"
+            "the assembled Jacobian, factorised, from the first step (a plane problem of {n} unknowns with a contact of penalty scale {STIFF_PENALTY_SCALE} or more between two deformable bodies)"
         ),
         (true, n) => format!(
             "the assembled Jacobian, factorised, from the first step (a plane problem of {n} unknowns, at most {START_JACOBIAN_LIMIT})"

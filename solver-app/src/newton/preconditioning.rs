@@ -7,8 +7,8 @@ use std::fmt;
 pub enum Preconditioning {
     /// `"auto"`: the assembled Jacobian from the start on a small
     /// two-dimensional problem ([`super::START_JACOBIAN_LIMIT`]) or a
-    /// two-dimensional one with a stiff contact
-    /// ([`super::STIFF_PENALTY_SCALE`]); else the
+    /// two-dimensional one with a stiff contact between two deformable
+    /// bodies ([`super::STIFF_PENALTY_SCALE`]); else the
     /// segregated operator, switched for the rest of the run to the
     /// assembled Jacobian when a linear solve needs more than
     /// [`SWITCH_KRYLOV_ITERATIONS`] Krylov iterations per Newton step, the

@@ -136,13 +136,7 @@ impl PcgAmg {
                 rr += r[i] * r[i];
             }
             let rn = rr.sqrt();
-            info.iterations = it;
-            info.final_residual = rn;
-            if !rn.is_finite() {
-                return Err(LinearSolverError::NonFinite {
-                    what: "PCG residual",
-                });
-            }
+            info.record_pcg_residual(it, rn)?;
             if rn <= target {
                 info.converged = true;
                 break;

@@ -119,6 +119,22 @@ pub struct SolveInfo {
     pub converged: bool,
 }
 
+impl SolveInfo {
+    /// Records the residual norm `rn` after conjugate-gradient iteration
+    /// `it`; a non-finite residual is an error.
+    pub fn record_pcg_residual(&mut self, it: usize, rn: f64) -> Result<(), LinearSolverError> {
+        self.iterations = it;
+        self.final_residual = rn;
+        if rn.is_finite() {
+            Ok(())
+        } else {
+            Err(LinearSolverError::NonFinite {
+                what: "PCG residual",
+            })
+        }
+    }
+}
+
 /// Diagnostics of a solver's factorisations (the IC(0)/ILU(0) diagonal shift and reuse counters).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct FactorisationInfo {

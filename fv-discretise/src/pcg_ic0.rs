@@ -440,13 +440,7 @@ fn pcg<F: Ic0Sweeps>(
             rz_new += t * wi;
         }
         let rn = rr.sqrt();
-        info.iterations = it;
-        info.final_residual = rn;
-        if !rn.is_finite() {
-            return Err(LinearSolverError::NonFinite {
-                what: "PCG residual",
-            });
-        }
+        info.record_pcg_residual(it, rn)?;
         if rn <= target || it == params.max_iterations {
             for (xi, &pi) in x.iter_mut().zip(p.iter()) {
                 *xi += alpha * pi;

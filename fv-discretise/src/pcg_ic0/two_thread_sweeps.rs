@@ -263,13 +263,7 @@ fn iterate(
         alpha = rz / pq;
         let (rz_new, rr) = forward(pass, r, q, w, Some(alpha));
         let rn = rr.sqrt();
-        info.iterations = it;
-        info.final_residual = rn;
-        if !rn.is_finite() {
-            return Err(LinearSolverError::NonFinite {
-                what: "PCG residual",
-            });
-        }
+        info.record_pcg_residual(it, rn)?;
         if rn <= target || it == params.max_iterations {
             let (x0, x1) = x.split_at_mut(h);
             let (p0, p1) = p.split_at(h);

@@ -34,6 +34,7 @@ use layout::StateLayout;
 use preconditioning::{Preconditioning, SWITCH_KRYLOV_ITERATIONS};
 use residual::{mean_cell_size, stiffness_area, ModelProblem, ResidualWork};
 use segregated_operator::SegregatedOperator;
+use start::{FirstIterate, LastChange};
 
 /// Newton solves per increment at most (the first, then one per
 /// multiplier update or force correction).
@@ -160,6 +161,13 @@ pub struct NewtonKrylovSolver {
     stiffness_area: f64,
     /// What the solver chose during the run, for the log.
     notes: Vec<String>,
+    /// Whether a body is plastic: an increment whose Newton solve fails
+    /// from one [`FirstIterate`] is tried from the other before it is cut
+    /// back.
+    plastic: bool,
+    /// The first iterate the last such retry converged from.
+    preferred_start: FirstIterate,
+    last_change: LastChange,
     /// Seconds per phase.
     pub times: PhaseTimes,
 }
@@ -238,6 +246,11 @@ impl NewtonKrylovSolver {
             cell_size: mean_cell_size(bodies),
             stiffness_area: stiffness_area(bodies),
             notes,
+            plastic: bodies
+                .iter()
+                .any(|b| !b.rigid && b.momentum.law.plastic_strain().is_some()),
+            preferred_start: FirstIterate::Tangent,
+            last_change: LastChange::default(),
             layout,
             times: PhaseTimes::default(),
         }
@@ -455,7 +468,17 @@ impl crate::nonlinear_solver::NonlinearSolver for NewtonKrylovSolver {
         on_iteration: &mut dyn FnMut(usize, f64) -> ControlFlow<()>,
     ) -> Result<IncrementInfo, SolveError> {
         self.begin_increment(bodies);
-        self.first_iterate(bodies, contacts);
+        // a plastic body's increment may start from either first iterate
+        // (docs/newton-krylov.md, "First iterate"): the one that served
+        // last, the other if the Newton solve fails from it
+        let two_starts = self.plastic && self.last_change.is_known();
+        let mut start = if two_starts {
+            self.preferred_start
+        } else {
+            FirstIterate::Tangent
+        };
+        let mut retried = false;
+        self.first_iterate(start, bodies, contacts);
         let solved = [0, 1, 2].map(|c| !self.layout.unsolved[c]);
         let mut info = IncrementInfo {
             required: self.newton.params.tolerance,
@@ -485,6 +508,19 @@ impl crate::nonlinear_solver::NonlinearSolver for NewtonKrylovSolver {
                     )))
                 }
                 Err(NewtonError::Interrupted { .. }) => break Err(SolveError::Interrupted),
+                Err(NewtonError::LineSearch { .. } | NewtonError::Stagnated { .. })
+                | Ok(NewtonInfo {
+                    converged: false, ..
+                }) if two_starts && !retried && solves == 1 => {
+                    if std::env::var_os("FVC_TRACE").is_some() {
+                        eprintln!("    failed from {start:?}; again from {:?}", start.other());
+                    }
+                    retried = true;
+                    start = start.other();
+                    self.first_iterate(start, bodies, contacts);
+                    solves = 0;
+                    continue;
+                }
                 Err(e) => break Err(SolveError::Nonlinear(e.to_string())),
                 Ok(i) if !i.converged => break Ok(false),
                 Ok(_) => {}
@@ -517,6 +553,13 @@ impl crate::nonlinear_solver::NonlinearSolver for NewtonKrylovSolver {
         info.converged = outcome?;
         if info.converged {
             contacts.commit_increment();
+            if retried {
+                self.preferred_start = start;
+            }
+            if self.plastic {
+                let (t0, t1) = self.step_times;
+                self.last_change.record(&self.x, t1 - t0);
+            }
         }
         Ok(info)
     }

@@ -4,6 +4,51 @@ use crate::contact_coupling::ContactSet;
 use crate::model::Body;
 use fv_nonlinear::{Frozen, NonlinearProblem};
 
+/// Where an increment's Newton solve starts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum FirstIterate {
+    /// The linear response of the start state to the step
+    /// ([`NewtonKrylovSolver::linear_predictor`]).
+    Tangent,
+    /// The last converged increment's change, scaled to this step
+    /// ([`NewtonKrylovSolver::last_change_iterate`]).
+    LastChange,
+}
+
+impl FirstIterate {
+    /// The other one.
+    pub(super) fn other(self) -> Self {
+        match self {
+            FirstIterate::Tangent => FirstIterate::LastChange,
+            FirstIterate::LastChange => FirstIterate::Tangent,
+        }
+    }
+}
+
+/// The last converged increment's change of the state and its step, for
+/// [`FirstIterate::LastChange`].
+#[derive(Debug, Default)]
+pub(super) struct LastChange {
+    x: Vec<f64>,
+    /// The step's length in time; zero before the first increment.
+    dt: f64,
+}
+
+impl LastChange {
+    /// Whether an increment has converged since the run (or its restart)
+    /// began.
+    pub(super) fn is_known(&self) -> bool {
+        self.dt > 0.0
+    }
+
+    /// Keeps `x`, the change of a converged step of length `dt`.
+    pub(super) fn record(&mut self, x: &[f64], dt: f64) {
+        self.x.clear();
+        self.x.extend_from_slice(x);
+        self.dt = dt;
+    }
+}
+
 /// The fraction of a step by which the conditions move to measure the
 /// start state's response ([`NewtonKrylovSolver::linear_predictor`]).
 const PREDICTOR_FRACTION: f64 = 1e-3;
@@ -28,15 +73,40 @@ const TANGENT_PREDICTOR_PRODUCTS: usize = 60;
 const START_HALVINGS: usize = 6;
 
 impl NewtonKrylovSolver {
-    /// The first iterate into `self.x`: the linear predictor, shortened
+    /// The first iterate into `self.x` (see [`FirstIterate`]), shortened
     /// until admissible, or zero (the start state).
-    pub(super) fn first_iterate(&mut self, bodies: &mut [Body], contacts: &mut ContactSet) {
+    pub(super) fn first_iterate(
+        &mut self,
+        start: FirstIterate,
+        bodies: &mut [Body],
+        contacts: &mut ContactSet,
+    ) {
+        if start == FirstIterate::LastChange && self.last_change_iterate() {
+            self.admissible_start(bodies, contacts);
+            return;
+        }
         self.x.iter_mut().for_each(|v| *v = 0.0);
         let predicted = self.linear_predictor(bodies, contacts);
         let moved = self.rigidly_moved_bodies(bodies, contacts);
         if predicted || moved {
             self.admissible_start(bodies, contacts);
         }
+    }
+
+    /// The last converged increment's change scaled to this step, as the
+    /// segregated method's `predictor` extrapolates: on a steady process
+    /// (a wire drawn through a die) each increment repeats the last. False
+    /// when none is known.
+    fn last_change_iterate(&mut self) -> bool {
+        let (t0, t1) = self.step_times;
+        if !self.last_change.is_known() || !(t1 > t0) {
+            return false;
+        }
+        let scale = (t1 - t0) / self.last_change.dt;
+        for (x, v) in self.x.iter_mut().zip(&self.last_change.x) {
+            *x = v * scale;
+        }
+        true
     }
 
     /// A body held by nothing but one rigid-motion patch, under the

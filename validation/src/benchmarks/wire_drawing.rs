@@ -82,8 +82,8 @@ impl WireRun {
     }
 }
 
-/// Runs the case on `mesh` (its own nonlinear method, the segregated one;
-/// `edit` may change the case text first).
+/// Runs the case on `mesh` (its own settings; `edit` may change the case
+/// text first).
 pub fn run_edited(mesh: WireMesh, edit: impl Fn(String) -> String) -> WireRun {
     let (dir, text) = match mesh {
         WireMesh::Coarse => read_case("wire-drawing", "case.toml"),

@@ -18,6 +18,7 @@ pub mod sphere_block;
 pub mod twisting_blocks;
 pub mod twisting_hemisphere;
 pub mod wire_drawing;
+pub mod wire_rolling;
 
 use std::path::{Path, PathBuf};
 
@@ -220,6 +221,23 @@ impl RunCost {
     pub fn us_per_cell_iteration(&self) -> f64 {
         1e6 * self.wall_seconds / (self.cells.max(1) * self.outer_iterations.max(1)) as f64
     }
+}
+
+/// Mean of `values` over the increments from `from` (s) and the largest
+/// deviation from it as a fraction of it; `None` when none is that late.
+pub fn steady_mean(time: &[f64], values: &[f64], from: f64) -> Option<(f64, f64)> {
+    let v: Vec<f64> = time
+        .iter()
+        .zip(values)
+        .filter(|(t, _)| **t >= from - 1e-12)
+        .map(|(_, v)| *v)
+        .collect();
+    if v.is_empty() {
+        return None;
+    }
+    let mean = v.iter().sum::<f64>() / v.len() as f64;
+    let dev = v.iter().map(|x| (x - mean).abs()).fold(0.0, f64::max);
+    Some((mean, dev / mean.abs()))
 }
 
 /// Linear interpolation of `(xs, ys)` (xs increasing) at `x`; NaN outside

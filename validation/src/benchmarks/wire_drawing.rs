@@ -4,7 +4,7 @@
 //! tension. The drawing force on the quarter, the axial reaction on the
 //! pulled end, against the thesis's per-mesh forces and its Richardson
 //! extrapolation. Case: `validation/cases/wire-drawing` (units mm, N).
-use super::{read_case, RunCost};
+use super::{read_case, steady_mean, RunCost};
 use crate::run_toml_in_with_history;
 
 /// The thesis's steady drawing force on the quarter per wire mesh
@@ -66,19 +66,7 @@ impl WireRun {
     /// Mean force from [`STEADY_FROM`] to the end and the largest
     /// deviation from it as a fraction of it; `None` before that time.
     pub fn steady(&self) -> Option<(f64, f64)> {
-        let f: Vec<f64> = self
-            .time
-            .iter()
-            .zip(&self.force)
-            .filter(|(t, _)| **t >= STEADY_FROM - 1e-12)
-            .map(|(_, f)| *f)
-            .collect();
-        if f.is_empty() {
-            return None;
-        }
-        let mean = f.iter().sum::<f64>() / f.len() as f64;
-        let dev = f.iter().map(|x| (x - mean).abs()).fold(0.0, f64::max);
-        Some((mean, dev / mean))
+        steady_mean(&self.time, &self.force, STEADY_FROM)
     }
 }
 

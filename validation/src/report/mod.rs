@@ -17,6 +17,7 @@ pub mod plot;
 pub mod shallow_ironing;
 pub mod sphere_block;
 pub mod twisting_hemisphere;
+pub mod wire_drawing;
 
 use std::fmt::Write as _;
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -38,6 +39,8 @@ pub fn sections() -> Vec<Box<dyn Section>> {
         Box::new(curved_beams::CurvedBeamsSection),
         Box::new(concentric_spheres::ConcentricSpheresSection),
         Box::new(twisting_hemisphere::TwistingHemisphereSection),
+        // industrial (§5.4)
+        Box::new(wire_drawing::WireDrawingSection),
         // one line per benchmark section
     ]
 }

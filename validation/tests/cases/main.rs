@@ -30,4 +30,5 @@ mod twisting_blocks;
 mod twisting_hemisphere;
 mod uniform_stress;
 mod wire_drawing;
+mod wire_rolling;
 mod without_tuning_keys;

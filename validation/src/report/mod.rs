@@ -18,6 +18,7 @@ pub mod shallow_ironing;
 pub mod sphere_block;
 pub mod twisting_hemisphere;
 pub mod wire_drawing;
+pub mod wire_rolling;
 
 use std::fmt::Write as _;
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -41,6 +42,7 @@ pub fn sections() -> Vec<Box<dyn Section>> {
         Box::new(twisting_hemisphere::TwistingHemisphereSection),
         // industrial (§5.4)
         Box::new(wire_drawing::WireDrawingSection),
+        Box::new(wire_rolling::WireRollingSection),
         // one line per benchmark section
     ]
 }

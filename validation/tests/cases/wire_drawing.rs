@@ -72,7 +72,7 @@ fn wire_drawing_coarse_force_between_thesis_coarse_and_richardson() {
 
 /// The two nonlinear methods on the coarse wire: the thesis's segregated
 /// method (307.2 N, deviation 1.2 %, 144 outer iterations per increment,
-/// 46–59 s) and the default Newton–Krylov agree on the steady force within
+/// 40 s alone) and the default Newton–Krylov agree on the steady force within
 /// 0.2 % and on the force of every increment from the steady window on
 /// within 1 % (both converge to the relative residual 1e-6, not to the
 /// same bits).
@@ -106,7 +106,7 @@ fn wire_drawing_coarse_methods_agree() {
 /// same extrapolation from the thesis's own coarse and medium forces
 /// (297.2 N). The 2 % needs the fine mesh (README.md).
 #[test]
-#[ignore = "about 45 minutes: cargo test --release -p validation --test cases wire_drawing_medium -- --ignored --nocapture"]
+#[ignore = "about 5 minutes: cargo test --release -p validation --test cases wire_drawing_medium -- --ignored --nocapture"]
 fn wire_drawing_medium_force_and_richardson_extrapolation() {
     let (coarse, _) = report("coarse", &run(WireMesh::Coarse));
     let (medium, _) = report("medium", &run(WireMesh::Medium));

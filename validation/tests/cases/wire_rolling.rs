@@ -10,18 +10,8 @@
 //! skips).
 use validation::benchmarks::steady_mean;
 use validation::benchmarks::wire_rolling::{
-    run_edited, RollingRun, CLOSED_AT, GAP, ROLL_RADIUS, WIRE_DIAMETER,
+    contact_length, run_edited, slab_pressure_band, RollingRun, CLOSED_AT, STEADY_FROM,
 };
-
-/// The steady state: the rolls closed at 0.014 s and the wire's material
-/// indented while they closed has left the bite by 0.021 s (increment 60:
-/// the force settles within 0.5 % there).
-const STEADY_FROM: f64 = 0.021;
-
-/// Mean flow stress of the wire over the strains of the bite (0 to about
-/// 0.36, ln(2.7/1.89)) from its hardening table (1,300 MPa at 0, 1,500 at
-/// 0.01, 1,690 at 0.1, 1,640 at 0.5), MPa.
-const MEAN_FLOW_STRESS: f64 = 1650.0;
 
 fn report(name: &str, r: &RollingRun) -> ((f64, f64), (f64, f64)) {
     eprintln!(
@@ -49,14 +39,11 @@ fn report(name: &str, r: &RollingRun) -> ((f64, f64), (f64, f64)) {
     (force, torque)
 }
 
-/// Slab method (Orowan's friction hill on the projected contact length):
-/// the mean roll pressure lies between Q σ̄ (the wire spreads freely
-/// sideways) and 1.155 Q σ̄ (plane strain), Q = 1 + μ L / (2 h̄) with
-/// L = √(R Δ) the contact length and h̄ the mean height, σ̄ the mean flow
-/// stress; the pressure is the force over the computed contact area (the
-/// estimate checks the pressure, not the area, whose spread the slab
-/// method does not give). The torque's lever arm, T / F, is 0.4–0.55 of L
-/// for cold rolling.
+/// The slab method's band of the mean roll pressure
+/// ([`slab_pressure_band`]) holds the force over the computed contact
+/// area (the estimate checks the pressure, not the area, whose spread the
+/// slab method does not give). The torque's lever arm, T / F, is 0.4–0.55
+/// of the contact length for cold rolling.
 #[test]
 #[ignore = "about 10 minutes: cargo test --release -p validation --test cases wire_rolling -- --ignored --nocapture"]
 fn wire_rolling_coarse_steady_force_within_the_slab_estimate() {
@@ -66,15 +53,12 @@ fn wire_rolling_coarse_steady_force_within_the_slab_estimate() {
     let mut its = r.iterations.clone();
     its.sort_unstable();
     assert!(its[its.len() / 2] <= 10, "Newton iterations {its:?}");
-    let reduction = (WIRE_DIAMETER - GAP) / 2.0;
-    let contact_length = (ROLL_RADIUS * reduction).sqrt();
-    let mean_height = (WIRE_DIAMETER + GAP) / 2.0;
-    let q = 1.0 + 0.1 * contact_length / (2.0 * mean_height);
+    let contact_length = contact_length();
     let area = steady_mean(&r.time, &r.contact_area, STEADY_FROM)
         .expect("steady window")
         .0;
     let pressure = force / area;
-    let (low, high) = (q * MEAN_FLOW_STRESS, 1.155 * q * MEAN_FLOW_STRESS);
+    let (low, high) = slab_pressure_band();
     eprintln!(
         "  contact length {contact_length:.2} mm, area {area:.3} mm², mean pressure {pressure:.0} MPa; slab: {low:.0}–{high:.0} MPa; lever arm {:.2} of L",
         torque / force / contact_length

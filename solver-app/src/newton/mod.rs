@@ -553,7 +553,13 @@ impl crate::nonlinear_solver::NonlinearSolver for NewtonKrylovSolver {
         info.converged = outcome?;
         if info.converged {
             contacts.commit_increment();
-            if retried {
+            if retried && start != self.preferred_start {
+                self.notes.push(format!(
+                    "t = {:.6e}: the Newton solve failed from {} and converged from {}, which starts the next increments (a plastic body; docs/newton-krylov.md, \"First iterate\")",
+                    self.step_times.1,
+                    self.preferred_start.describe(),
+                    start.describe()
+                ));
                 self.preferred_start = start;
             }
             if self.plastic {

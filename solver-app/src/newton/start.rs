@@ -16,6 +16,14 @@ pub(super) enum FirstIterate {
 }
 
 impl FirstIterate {
+    /// For the log.
+    pub(super) fn describe(self) -> &'static str {
+        match self {
+            FirstIterate::Tangent => "the linearised response to the step",
+            FirstIterate::LastChange => "the last increment's change",
+        }
+    }
+
     /// The other one.
     pub(super) fn other(self) -> Self {
         match self {

@@ -4,7 +4,7 @@
 //! steady (within 2 % of its mean from 0.021 s) and within the slab band.
 use std::path::Path;
 
-use super::plot::{render_png, Legend, Plot, Style, BLACK_C, BLUE_C, RED_C};
+use super::plot::{render_png, Legend, Plot, Style, BLACK_C, BLUE_C, GREEN_C, RED_C};
 use super::{
     not_run_row, run_variant, table, verdict, ReportError, Section, SectionReport, Status,
 };
@@ -31,13 +31,13 @@ fn plots(r: &RollingRun, band: (f64, f64), area: f64) -> (Plot, Plot) {
             .zip(r.force.iter().copied())
             .collect(),
     );
-    for (p, label) in [
-        (band.0, "slab, free spread"),
-        (band.1, "slab, plane strain"),
+    for (p, label, colour) in [
+        (band.0, "slab, free spread", GREEN_C),
+        (band.1, "slab, plane strain", BLACK_C),
     ] {
         force.add(
             &format!("{label} × computed area ({:.0} N)", p * area),
-            Style::Line(BLACK_C),
+            Style::Line(colour),
             vec![(STEADY_FROM, p * area), (end, p * area)],
         );
     }

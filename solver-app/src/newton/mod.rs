@@ -434,12 +434,15 @@ impl crate::nonlinear_solver::NonlinearSolver for NewtonKrylovSolver {
     fn set_divergence_retries(&mut self, _retries: u32) {}
 
     /// `"auto"` keeps the assembled Jacobian as preconditioner once it
-    /// switched to it.
+    /// switched to it; a plastic body's increments keep their first
+    /// iterate and the last change.
     fn save_state(&self, out: &mut fv_mesh::StateArrays) {
         out.put_scalar(
             "solver/assembled_jacobian".into(),
             f64::from(u8::from(self.jacobian.is_some())),
         );
+        self.last_change
+            .save_state("solver/last_change", self.preferred_start, out);
     }
 
     fn restore_state(&mut self, bodies: &[Body], s: &fv_mesh::StateArrays) -> Result<(), String> {
@@ -448,6 +451,9 @@ impl crate::nonlinear_solver::NonlinearSolver for NewtonKrylovSolver {
         if s.has(name) && s.scalar(name)? != 0.0 && self.jacobian.is_none() {
             self.jacobian = Some(AssembledJacobian::new(bodies, &self.layout));
         }
+        self.preferred_start =
+            self.last_change
+                .restore_state("solver/last_change", self.layout.len(), s)?;
         Ok(())
     }
 

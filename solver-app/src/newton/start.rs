@@ -55,6 +55,52 @@ impl LastChange {
         self.x.extend_from_slice(x);
         self.dt = dt;
     }
+
+    /// Restart: puts the change, its step and the first iterate that
+    /// serves under `prefix` (nothing before the first record), so that a
+    /// continued run starts its increments as the uninterrupted run does.
+    pub(super) fn save_state(
+        &self,
+        prefix: &str,
+        preferred: FirstIterate,
+        out: &mut fv_mesh::StateArrays,
+    ) {
+        if !self.is_known() {
+            return;
+        }
+        out.put_scalars(format!("{prefix}/change"), &self.x);
+        out.put_scalar(format!("{prefix}/step"), self.dt);
+        let last = f64::from(u8::from(preferred == FirstIterate::LastChange));
+        out.put_scalar(format!("{prefix}/from_last_change"), last);
+    }
+
+    /// Restart: takes back [`Self::save_state`]'s record, if any, for a
+    /// state of `n` unknowns; returns the first iterate that served.
+    pub(super) fn restore_state(
+        &mut self,
+        prefix: &str,
+        n: usize,
+        s: &fv_mesh::StateArrays,
+    ) -> Result<FirstIterate, String> {
+        self.dt = 0.0;
+        let change = format!("{prefix}/change");
+        if !s.has(&change) {
+            return Ok(FirstIterate::Tangent);
+        }
+        s.scalars_to_vec(&change, &mut self.x)?;
+        if self.x.len() != n {
+            return Err(format!(
+                "{change}: {} values for a state of {n} unknowns",
+                self.x.len()
+            ));
+        }
+        self.dt = s.scalar(&format!("{prefix}/step"))?;
+        Ok(if s.scalar(&format!("{prefix}/from_last_change"))? != 0.0 {
+            FirstIterate::LastChange
+        } else {
+            FirstIterate::Tangent
+        })
+    }
 }
 
 /// The fraction of a step by which the conditions move to measure the

@@ -276,3 +276,66 @@ fn a_case_that_does_not_fit_the_results_is_refused() {
     assert_eq!(code, 0, "{err}");
     assert_eq!(history(&dir.path().join("out/block")).len(), 2);
 }
+
+/// validation/cases/wire-drawing cut to `steps` increments of its 1 ms
+/// (the meshes read from the case's folder).
+fn wire_drawing_case(steps: usize) -> String {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../validation/cases/wire-drawing");
+    let mut case = std::fs::read_to_string(root.join("case.toml")).unwrap();
+    for (from, to) in [
+        (
+            "end = 0.1\n".to_owned(),
+            format!("end = {}\n", steps as f64 * 1e-3),
+        ),
+        ("steps = 100\n".to_owned(), format!("steps = {steps}\n")),
+    ] {
+        assert!(case.contains(&from), "the case no longer has {from}");
+        case = case.replace(&from, &to);
+    }
+    for mesh in ["wire.msh", "die.msh"] {
+        let path = root.join(mesh);
+        case = case.replace(
+            &format!("file = \"{mesh}\""),
+            &format!("file = {:?}", path.to_str().unwrap()),
+        );
+    }
+    case
+}
+
+/// A plastic body's increments start from the last converged change once
+/// the tangent's first iterate failed (the wire drawing's second
+/// increment); a run continued from its results starts there too: the
+/// same 4 Newton iterations per increment as the whole run (from the
+/// tangent, the continued increments needed 10–40 with cut-backs), the
+/// drawing force within 1e-4.
+#[test]
+fn a_continued_plastic_run_keeps_its_first_iterate() {
+    let dir = tempfile::tempdir().unwrap();
+    let whole_dir = dir.path().join("whole");
+    std::fs::create_dir_all(&whole_dir).unwrap();
+    let (code, err) = run(&whole_dir, &wire_drawing_case(8), &[]);
+    assert_eq!(code, 0, "{err}");
+    let whole = history(&whole_dir.join("out/wire-drawing"));
+    let (code, err) = run(dir.path(), &wire_drawing_case(5), &[]);
+    assert_eq!(code, 0, "{err}");
+    let results = h5(dir.path(), "wire-drawing");
+    let (code, err) = run(
+        dir.path(),
+        &wire_drawing_case(8),
+        &["--restart", results.to_str().unwrap()],
+    );
+    assert_eq!(code, 0, "{err}");
+    let continued = history(&dir.path().join("out/wire-drawing"));
+    assert_eq!(whole.len(), 8);
+    assert_eq!(continued.len(), 8);
+    // columns: time, outer_iterations, residual, wire/pulled:Fx, …
+    for (a, b) in whole[5..].iter().zip(&continued[5..]) {
+        assert_eq!(a[1], b[1], "Newton iterations at t = {}", a[0]);
+        assert!(
+            (a[3] / b[3] - 1.0).abs() < 1e-4,
+            "force {} against {}",
+            a[3],
+            b[3]
+        );
+    }
+}

@@ -34,7 +34,7 @@ import sys
 
 sys.dont_write_bytecode = True
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "wire-drawing"))
-from wire import write  # noqa: E402  (the drawing case's writer)
+from wire import Grid2d, sweep, write  # noqa: E402  (the drawing case's generator)
 
 WIRE_RADIUS = 2.5
 HELIX_RADIUS = 5.0
@@ -76,28 +76,14 @@ def disc(n, m):
     A quarter-disc O-grid (90° symmetry) on the core wire made the outer
     wires' forces differ in pairs (wires 1 and 4, 2 and 5, 3 and 6) by the
     facets facing them."""
-    points, index = [], {}
-
-    def node(y, z):
-        key = (round(y, 9), round(z, 9))
-        if key not in index:
-            index[key] = len(points)
-            points.append((y, z))
-        return index[key]
+    g = Grid2d()
+    node, quad = g.node, g.quad
 
     def corner(i):
         a = math.pi / 3 * i
         return (CORE * math.cos(a), CORE * math.sin(a))
 
-    quads, arc = [], []
-
-    def quad(a, b, c, d):
-        q = [a, b, c, d]
-        area = 0.0
-        for s in range(4):
-            (y0, z0), (y1, z1) = points[q[s]], points[q[(s + 1) % 4]]
-            area += y0 * z1 - y1 * z0
-        quads.append(q if area > 0 else q[::-1])
+    arc = []
 
     for j in range(3):  # rhombus O, H(2j), H(2j+1), H(2j+2)
         h0, h2 = corner(2 * j), corner(2 * j + 2)
@@ -119,41 +105,26 @@ def disc(n, m):
             for r in range(m):
                 quad(grid[t][r], grid[t][r + 1], grid[t + 1][r + 1], grid[t + 1][r])
             arc.append((grid[t][m], grid[t + 1][m]))
-    return points, quads, arc
+    return g.points, g.quads, arc
 
 
 def wire(k, n, m, layers):
     """Wire k (0: the core, 1–6: the outer wires): nodes, hexahedra, patches."""
-    sec, quads, arc = disc(n, m)
-    ns = len(sec)
-    nodes = []
+    frames = []
     for l in range(layers + 1):
         x = NOSE - LENGTH + LENGTH * l / layers
         s = envelope(x) / STRAND_RADIUS
         turn = 2.0 * math.pi * x / LAY_LENGTH + (k - 1) * math.pi / 3.0
         c, sn = math.cos(turn), math.sin(turn)
         cy, cz = (0.0, 0.0) if k == 0 else (HELIX_RADIUS * c, HELIX_RADIUS * sn)
-        for y, z in sec:
-            yr, zr = c * y - sn * z, sn * y + c * z
-            nodes.append((x, s * (cy + WIRE_RADIUS * yr), s * (cz + WIRE_RADIUS * zr)))
+        frames.append((x, s, c, sn, cy, cz))
 
-    def tag(l, p):
-        return l * ns + p + 1
+    def place(l, y, z):
+        x, s, c, sn, cy, cz = frames[l]
+        yr, zr = c * y - sn * z, sn * y + c * z
+        return (x, s * (cy + WIRE_RADIUS * yr), s * (cz + WIRE_RADIUS * zr))
 
-    hexes = [[tag(l, p) for p in q] + [tag(l + 1, p) for p in q] for l in range(layers) for q in quads]
-    patches = {
-        "front": [[tag(layers, p) for p in q] for q in quads],
-        "tail": [[tag(0, p) for p in q[::-1]] for q in quads],
-        "surface": [],
-    }
-    for l in range(layers):
-        for a, b in arc:
-            (y0, z0), (y1, z1) = sec[a], sec[b]
-            mid = ((y0 + y1) / 2, (z0 + z1) / 2)
-            if (z1 - z0) * mid[0] - (y1 - y0) * mid[1] < 0:
-                a, b = b, a
-            patches["surface"].append([tag(l, a), tag(l + 1, a), tag(l + 1, b), tag(l, b)])
-    return nodes, hexes, patches
+    return sweep(disc(n, m), layers, place, ("front", "tail"), "surface", False)
 
 
 def die(factor):

@@ -68,20 +68,37 @@ def radius(x):
     return R_WIRE - FILLET + math.sqrt(FILLET**2 - (x - x_flat) ** 2)
 
 
+class Grid2d:
+    """Points of a plane section, merged where they coincide, and its
+    quads turned counter-clockwise (shared with the rolling and strand
+    generators)."""
+
+    def __init__(self):
+        self.points, self.index, self.quads = [], {}, []
+
+    def node(self, y, z):
+        key = (round(y, 9), round(z, 9))
+        if key not in self.index:
+            self.index[key] = len(self.points)
+            self.points.append((y, z))
+        return self.index[key]
+
+    def quad(self, a, b, c, d):
+        q = [a, b, c, d]
+        area = 0.0
+        for s in range(4):
+            (y0, z0), (y1, z1) = self.points[q[s]], self.points[q[(s + 1) % 4]]
+            area += y0 * z1 - y1 * z0
+        self.quads.append(q if area > 0 else q[::-1])
+
+
 def section(n, m):
     """Unit quarter-disc O-grid: points (y, z) and counter-clockwise quads.
 
     Also the quads' edges on the arc (for the "outer" patch) as index pairs.
     """
-    points, index = [], {}
-
-    def node(y, z):
-        key = (round(y, 9), round(z, 9))
-        if key not in index:
-            index[key] = len(points)
-            points.append((y, z))
-        return index[key]
-
+    g = Grid2d()
+    node = g.node
     grid = {}
     for i in range(n + 1):
         for j in range(n + 1):
@@ -100,15 +117,8 @@ def section(n, m):
             grid["b", i, k] = node(
                 (1 - f) * CORE * i / n + f * math.cos(th), (1 - f) * CORE + f * math.sin(th)
             )
-    quads, arc = [], []
-
-    def quad(a, b, c, d):
-        q = [a, b, c, d]
-        area = 0.0
-        for s in range(4):
-            (y0, z0), (y1, z1) = points[q[s]], points[q[(s + 1) % 4]]
-            area += y0 * z1 - y1 * z0
-        quads.append(q if area > 0 else q[::-1])
+    arc = []
+    quad = g.quad
 
     for i in range(n):
         for j in range(n):
@@ -118,18 +128,18 @@ def section(n, m):
             for k in range(m):
                 quad(grid[b, s, k], grid[b, s, k + 1], grid[b, s + 1, k + 1], grid[b, s + 1, k])
             arc.append((grid[b, s, m], grid[b, s + 1, m]))
-    return points, quads, arc
+    return g.points, g.quads, arc
 
 
-def build(refine):
-    n, m, layers = 4 << refine, 3 << refine, 60 << refine
-    sec, quads, arc = section(n, m)
+def sweep(section, layers, place, ends, lateral, symmetry):
+    """Hexahedra of a plane section swept through layers 0..layers:
+    `place(l, y, z)` puts a section point in layer l. Patches: `ends`
+    (the last layer's, the first's), `lateral` (the section's arc edges,
+    swept) and, with `symmetry`, "symmetry-y" and "symmetry-z" (the
+    section's edges on y = 0 and z = 0)."""
+    sec, quads, arc = section
     ns = len(sec)
-    xs = [NOSE - LENGTH + LENGTH * l / layers for l in range(layers + 1)]
-    nodes = []
-    for x in xs:
-        r = radius(x)
-        nodes += [(x, r * y, r * z) for (y, z) in sec]
+    nodes = [place(l, y, z) for l in range(layers + 1) for (y, z) in sec]
 
     def tag(l, p):
         return l * ns + p + 1
@@ -139,10 +149,12 @@ def build(refine):
         for l in range(layers)
         for q in quads
     ]
-    patches = {name: [] for name in ("pulled", "upstream", "outer", "symmetry-y", "symmetry-z")}
-    patches["upstream"] = [[tag(0, p) for p in q[::-1]] for q in quads]
-    patches["pulled"] = [[tag(layers, p) for p in q] for q in quads]
-    def outward(a, b, out):
+    names = list(ends) + [lateral] + (["symmetry-y", "symmetry-z"] if symmetry else [])
+    patches = {name: [] for name in names}
+    patches[ends[1]] = [[tag(0, p) for p in q[::-1]] for q in quads]
+    patches[ends[0]] = [[tag(layers, p) for p in q] for q in quads]
+
+    def outward(l, a, b, out):
         """The lateral quad of section edge a-b in layer l, its normal along out."""
         (y0, z0), (y1, z1) = sec[a], sec[b]
         # the quad a, a', b', b has the normal (edge a->b) x (+x) in (y, z)
@@ -153,15 +165,31 @@ def build(refine):
     for l in range(layers):
         for a, b in arc:
             mid = [(sec[a][c] + sec[b][c]) / 2 for c in range(2)]
-            patches["outer"].append(outward(a, b, mid))
+            patches[lateral].append(outward(l, a, b, mid))
+        if not symmetry:
+            continue
         for q in quads:
             for s in range(4):
                 a, b = q[s], q[(s + 1) % 4]
                 for name, axis in (("symmetry-y", 0), ("symmetry-z", 1)):
                     if abs(sec[a][axis]) < 1e-12 and abs(sec[b][axis]) < 1e-12:
                         out = (-1.0, 0.0) if axis == 0 else (0.0, -1.0)
-                        patches[name].append(outward(a, b, out))
+                        patches[name].append(outward(l, a, b, out))
     return nodes, hexes, patches
+
+
+def build(refine):
+    n, m, layers = 4 << refine, 3 << refine, 60 << refine
+    xs = [NOSE - LENGTH + LENGTH * l / layers for l in range(layers + 1)]
+    rs = [radius(x) for x in xs]
+    return sweep(
+        section(n, m),
+        layers,
+        lambda l, y, z: (xs[l], rs[l] * y, rs[l] * z),
+        ("pulled", "upstream"),
+        "outer",
+        True,
+    )
 
 
 def write(path, nodes, hexes, patches):

@@ -27,7 +27,7 @@ import sys
 
 sys.dont_write_bytecode = True
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "wire-drawing"))
-from wire import section, write  # noqa: E402  (the drawing case's generator)
+from wire import section, sweep, write  # noqa: E402  (the drawing case's generator)
 
 RADIUS = 1.35
 LENGTH = 80.0
@@ -36,39 +36,14 @@ X_TAIL = -70.0
 
 def build(factor):
     n, m, layers = (round(c * factor) for c in (6, 4, 240))
-    sec, quads, arc = section(n, m)
-    ns = len(sec)
-    nodes = []
-    for l in range(layers + 1):
-        x = X_TAIL + LENGTH * l / layers
-        nodes += [(x, RADIUS * y, RADIUS * z) for (y, z) in sec]
-
-    def tag(l, p):
-        return l * ns + p + 1
-
-    hexes = [[tag(l, p) for p in q] + [tag(l + 1, p) for p in q] for l in range(layers) for q in quads]
-    patches = {name: [] for name in ("front", "tail", "outer", "symmetry-y", "symmetry-z")}
-    patches["tail"] = [[tag(0, p) for p in q[::-1]] for q in quads]
-    patches["front"] = [[tag(layers, p) for p in q] for q in quads]
-
-    def lateral(l, a, b, out):
-        (y0, z0), (y1, z1) = sec[a], sec[b]
-        if (z1 - z0) * out[0] - (y1 - y0) * out[1] < 0:
-            a, b = b, a
-        return [tag(l, a), tag(l + 1, a), tag(l + 1, b), tag(l, b)]
-
-    for l in range(layers):
-        for a, b in arc:
-            mid = [(sec[a][c] + sec[b][c]) / 2 for c in range(2)]
-            patches["outer"].append(lateral(l, a, b, mid))
-        for q in quads:
-            for s in range(4):
-                a, b = q[s], q[(s + 1) % 4]
-                for name, axis in (("symmetry-y", 0), ("symmetry-z", 1)):
-                    if abs(sec[a][axis]) < 1e-12 and abs(sec[b][axis]) < 1e-12:
-                        out = (-1.0, 0.0) if axis == 0 else (0.0, -1.0)
-                        patches[name].append(lateral(l, a, b, out))
-    return nodes, hexes, patches
+    return sweep(
+        section(n, m),
+        layers,
+        lambda l, y, z: (X_TAIL + LENGTH * l / layers, RADIUS * y, RADIUS * z),
+        ("front", "tail"),
+        "outer",
+        True,
+    )
 
 
 def main():

@@ -14,23 +14,22 @@ use crate::benchmarks::wire_rolling::{run_edited, slab_pressure_band, RollingRun
 /// The wire-rolling section.
 pub struct WireRollingSection;
 
+/// One quantity of the run against time.
+fn history_plot(r: &RollingRun, what: &str, unit: &str, values: &[f64], style: Style) -> Plot {
+    let mut plot = Plot::new(
+        &format!("wire-rolling: roll {what} on the quarter"),
+        "time (s)",
+        &format!("{what} ({unit})"),
+    );
+    plot.legend = Legend::LowerRight;
+    let points = r.time.iter().copied().zip(values.iter().copied()).collect();
+    plot.add("fvcontact, coarse wire", style, points);
+    plot
+}
+
 fn plots(r: &RollingRun, band: (f64, f64), area: f64) -> (Plot, Plot) {
     let end = r.time.last().copied().unwrap_or(0.056);
-    let mut force = Plot::new(
-        "wire-rolling: roll force on the quarter",
-        "time (s)",
-        "force (N)",
-    );
-    force.legend = Legend::LowerRight;
-    force.add(
-        "fvcontact, coarse wire",
-        Style::Line(BLUE_C),
-        r.time
-            .iter()
-            .copied()
-            .zip(r.force.iter().copied())
-            .collect(),
-    );
+    let mut force = history_plot(r, "force", "N", &r.force, Style::Line(BLUE_C));
     for (p, label, colour) in [
         (band.0, "slab, free spread", GREEN_C),
         (band.1, "slab, plane strain", BLACK_C),
@@ -41,21 +40,7 @@ fn plots(r: &RollingRun, band: (f64, f64), area: f64) -> (Plot, Plot) {
             vec![(STEADY_FROM, p * area), (end, p * area)],
         );
     }
-    let mut torque = Plot::new(
-        "wire-rolling: roll torque on the quarter",
-        "time (s)",
-        "torque (N mm)",
-    );
-    torque.legend = Legend::LowerRight;
-    torque.add(
-        "fvcontact, coarse wire",
-        Style::Line(RED_C),
-        r.time
-            .iter()
-            .copied()
-            .zip(r.torque.iter().copied())
-            .collect(),
-    );
+    let torque = history_plot(r, "torque", "N mm", &r.torque, Style::Line(RED_C));
     (force, torque)
 }
 

@@ -289,3 +289,88 @@ fn a_creeping_solve_stops_once_its_rate_cannot_reach_the_tolerance() {
     let info = solve(0.7, 10).unwrap();
     assert!(info.converged && info.iterations == 16, "{info:?}");
 }
+
+/// The linear problem F(u) = h² − (−u_{i−1} + 2u_i − u_{i+1}) (a string
+/// under a uniform load) with no preconditioner: its Krylov solves need
+/// a long basis, as the fine wire drawing's did.
+struct UnpreconditionedString {
+    n: usize,
+}
+
+impl NonlinearProblem for UnpreconditionedString {
+    fn len(&self) -> usize {
+        self.n
+    }
+    fn residual(&mut self, x: &[f64], f: &mut [f64], _: Frozen) -> Result<(), Inadmissible> {
+        let h = 1.0 / (self.n + 1) as f64;
+        for i in 0..self.n {
+            let left = if i > 0 { x[i - 1] } else { 0.0 };
+            let right = if i + 1 < self.n { x[i + 1] } else { 0.0 };
+            f[i] = h * h + left - 2.0 * x[i] + right;
+        }
+        Ok(())
+    }
+    fn residual_reference(&self) -> f64 {
+        let h = 1.0 / (self.n + 1) as f64;
+        h * h * (self.n as f64).sqrt()
+    }
+    fn typical_size(&self) -> f64 {
+        0.1
+    }
+    fn prepare_preconditioner(&mut self, _: &[f64], _: Option<usize>) -> Result<(), Inadmissible> {
+        Ok(())
+    }
+    fn precondition(&mut self, r: &[f64], z: &mut [f64]) {
+        z.copy_from_slice(r);
+    }
+    fn linear_preconditioner(&self) -> bool {
+        true
+    }
+}
+
+#[test]
+fn a_krylov_solve_that_stops_short_grows_the_restart() {
+    let n = 100;
+    let h = 1.0 / (n + 1) as f64;
+    let solve = |growth_limit: usize| {
+        let params = NewtonParams {
+            tolerance: 1e-8,
+            max_iterations: 30,
+            restart_growth_limit: growth_limit,
+            krylov: fv_nonlinear::GmresParams {
+                restart: 4,
+                max_iterations: 16,
+                ..Default::default()
+            },
+            ..Default::default()
+        };
+        let mut solver = NewtonKrylov::new(n, params);
+        let mut x = vec![0.0; n];
+        let info = solver.solve(&mut UnpreconditionedString { n }, &mut x, &mut |_| {
+            std::ops::ControlFlow::Continue(())
+        });
+        (info, solver.krylov_params(), x)
+    };
+    // GMRES(4) capped at 16 products: the string's 100 modes are beyond it
+    let (short, krylov, _) = solve(0);
+    assert_eq!(krylov.restart, 4);
+    assert!(!matches!(short, Ok(ref i) if i.converged), "{short:?}");
+    // grown by doubling (at most to GMRES(128)), 4 cycles a solve:
+    // converged
+    let (grown, krylov, x) = solve(128);
+    let grown = grown.unwrap();
+    assert!(grown.converged, "{grown:?}");
+    assert!(
+        krylov.restart > 4 && krylov.restart <= 128 && krylov.restart.is_power_of_two(),
+        "{krylov:?}"
+    );
+    assert_eq!(krylov.max_iterations, 4 * krylov.restart);
+    // the string's deflection u(x) = x (1 − x) / 2, exact at the nodes
+    for (i, u) in x.iter().enumerate() {
+        let s = (i + 1) as f64 * h;
+        assert!(
+            (u - s * (1.0 - s) / 2.0).abs() < 1e-6 * 0.125,
+            "u({s}) = {u}"
+        );
+    }
+}

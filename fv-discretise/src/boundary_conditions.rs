@@ -18,6 +18,12 @@ pub enum PatchCondition {
     /// Prescribed displacement along the outward normal (negative = inward)
     /// per face, zero shear traction.
     NormalDisplacement(Vec<f64>),
+    /// Prescribed displacement in the face plane per face (the part of
+    /// the vector along the face normal is ignored), zero normal traction:
+    /// the complement of [`PatchCondition::NormalDisplacement`] (a face
+    /// held sideways and free along its normal, as the tails of a strand
+    /// fed into a die).
+    TangentialDisplacement(Vec<Vector>),
     /// Symmetry plane: zero normal displacement, zero shear traction (eqs. 3.25–3.26).
     Symmetry,
     /// The out-of-plane faces of a one-cell-thick 2-D model: no flux.
@@ -136,6 +142,34 @@ impl LinearisedContact {
 }
 
 impl PatchCondition {
+    /// For the faces whose displacement is prescribed in part (symmetry,
+    /// normal- and tangential-displacement), the projection P onto that
+    /// part at a face of unit normal `n`: n nᵀ for the first two,
+    /// I − n nᵀ for the third. The face's boundary value is
+    /// (I − P) u_extrapolated + P u_prescribed and its traction P σ n: the
+    /// other part of it is zero (eqs. 3.25–3.26 for symmetry).
+    pub fn held_projection(&self, n: &Vector) -> Option<Tensor> {
+        match self {
+            PatchCondition::Symmetry | PatchCondition::NormalDisplacement(_) => {
+                Some(n * n.transpose())
+            }
+            PatchCondition::TangentialDisplacement(_) => {
+                Some(Tensor::identity() - n * n.transpose())
+            }
+            _ => None,
+        }
+    }
+
+    /// The prescribed displacement of face `i` (of the patch) along
+    /// [`Self::held_projection`]: P u_prescribed (zero for symmetry).
+    pub fn held_value(&self, i: usize, n: &Vector) -> Vector {
+        match self {
+            PatchCondition::NormalDisplacement(v) => n * v[i],
+            PatchCondition::TangentialDisplacement(v) => v[i] - n * n.dot(&v[i]),
+            _ => Vector::zeros(),
+        }
+    }
+
     /// Name as in the case file.
     pub fn name(&self) -> &'static str {
         match self {
@@ -143,6 +177,7 @@ impl PatchCondition {
             PatchCondition::Traction(_) => "traction",
             PatchCondition::Pressure(_) => "pressure",
             PatchCondition::NormalDisplacement(_) => "normal-displacement",
+            PatchCondition::TangentialDisplacement(_) => "tangential-displacement",
             PatchCondition::Symmetry => "symmetry",
             PatchCondition::Empty => "empty",
             PatchCondition::Wedge(_) => "wedge",

@@ -695,8 +695,10 @@ impl SolidMomentum {
                 let n = geom.face_normal(f);
                 diag[o] += match cond {
                     PatchCondition::Displacement(_) => a,
-                    PatchCondition::Symmetry | PatchCondition::NormalDisplacement(_) => {
-                        a * n[c] * n[c]
+                    PatchCondition::Symmetry
+                    | PatchCondition::NormalDisplacement(_)
+                    | PatchCondition::TangentialDisplacement(_) => {
+                        cond.held_projection(&n).map_or(0.0, |pr| a * pr[(c, c)])
                     }
                     // hoop stiffness: K|Γ|/δ_n · sin²θ = K|Γ| sin θ / r per face
                     PatchCondition::Wedge(r) => a * (1.0 - r[f - p.start][(c, c)].powi(2)).max(0.0),
@@ -734,9 +736,11 @@ impl SolidMomentum {
             for f in p.faces() {
                 let step = match cond {
                     PatchCondition::Displacement(v) => v[f - p.start] - self.u_b[f - ni],
-                    PatchCondition::NormalDisplacement(v) => {
+                    PatchCondition::NormalDisplacement(_)
+                    | PatchCondition::TangentialDisplacement(_) => {
                         let n = geom.face_normal(f);
-                        n * (v[f - p.start] - n.dot(&self.u_b[f - ni]))
+                        let held = cond.held_projection(&n).unwrap_or_else(Tensor::zeros);
+                        cond.held_value(f - p.start, &n) - held * self.u_b[f - ni]
                     }
                     _ => continue,
                 };
@@ -768,10 +772,7 @@ impl SolidMomentum {
     ) -> bool {
         let mut inclined = false;
         for (p, cond) in mesh.patches.iter().zip(&self.conditions) {
-            if !matches!(
-                cond,
-                PatchCondition::Symmetry | PatchCondition::NormalDisplacement(_)
-            ) {
+            if cond.held_projection(&Vector::x()).is_none() {
                 continue;
             }
             for f in p.faces() {
@@ -781,8 +782,12 @@ impl SolidMomentum {
                 }
                 inclined = true;
                 let o = mesh.owner[f] as usize;
-                let cross: f64 = (0..3).filter(|&d| d != c).map(|d| n[d] * e[o][d]).sum();
-                rhs[o] -= self.face_coefficient(geom, f) * n[c] * cross;
+                let held = cond.held_projection(&n).unwrap_or_else(Tensor::zeros);
+                let cross: f64 = (0..3)
+                    .filter(|&d| d != c)
+                    .map(|d| held[(c, d)] * e[o][d])
+                    .sum();
+                rhs[o] -= self.face_coefficient(geom, f) * cross;
             }
         }
         inclined
@@ -857,9 +862,11 @@ impl SolidMomentum {
                         self.snd_b[b] = g_new;
                         extrapolated + g_new * self.dn[f]
                     }
-                    PatchCondition::Symmetry => extrapolated - n * n.dot(&extrapolated),
-                    PatchCondition::NormalDisplacement(v) => {
-                        extrapolated - n * n.dot(&extrapolated) + n * v[f - p.start]
+                    PatchCondition::Symmetry
+                    | PatchCondition::NormalDisplacement(_)
+                    | PatchCondition::TangentialDisplacement(_) => {
+                        let held = cond.held_projection(&n).unwrap_or_else(Tensor::zeros);
+                        extrapolated - held * extrapolated + cond.held_value(f - p.start, &n)
                     }
                     PatchCondition::Empty => self.u[o],
                     PatchCondition::Wedge(r) => {
@@ -1063,6 +1070,7 @@ impl SolidMomentum {
                     PatchCondition::Displacement(_)
                         | PatchCondition::Symmetry
                         | PatchCondition::NormalDisplacement(_)
+                        | PatchCondition::TangentialDisplacement(_)
                 ) {
                     continue;
                 }
@@ -1280,9 +1288,11 @@ impl SolidMomentum {
                         let g = self.boundary_gradient(f, b, o, &n);
                         balance(lc.traction_at(i, &self.u_b[b]) * mag, &g)
                     }
-                    PatchCondition::Symmetry | PatchCondition::NormalDisplacement(_) => {
+                    PatchCondition::Symmetry
+                    | PatchCondition::NormalDisplacement(_)
+                    | PatchCondition::TangentialDisplacement(_) => {
                         let s = self.boundary_sigma_hat(f, b, o, &n);
-                        n * n.dot(&(s * area))
+                        cond.held_projection(&n).unwrap_or_else(Tensor::zeros) * (s * area)
                     }
                     PatchCondition::Empty => Vector::zeros(),
                     PatchCondition::Wedge(r) => {

@@ -178,6 +178,7 @@ pub fn spec_name(s: &crate::case::BoundarySpec) -> &'static str {
     match s {
         B::Displacement { .. } => "displacement",
         B::NormalDisplacement { .. } => "normal-displacement",
+        B::TangentialDisplacement { .. } => "tangential-displacement",
         B::Traction { .. } => "traction",
         B::Pressure { .. } => "pressure",
         B::Force { .. } => "force",

@@ -322,6 +322,7 @@ impl Body {
                 s,
                 BoundarySpec::Displacement { .. }
                     | BoundarySpec::NormalDisplacement { .. }
+                    | BoundarySpec::TangentialDisplacement { .. }
                     | BoundarySpec::Force { .. }
                     | BoundarySpec::RigidMotion { .. }
             )
@@ -351,6 +352,7 @@ impl Body {
                 Some(
                     BoundarySpec::Displacement { .. }
                     | BoundarySpec::NormalDisplacement { .. }
+                    | BoundarySpec::TangentialDisplacement { .. }
                     | BoundarySpec::Force { .. }
                     | BoundarySpec::RigidMotion { .. },
                 ) => Some(i),
@@ -476,7 +478,8 @@ impl Body {
         };
         for spec in self.patch_specs.iter().flatten() {
             match spec {
-                BoundarySpec::Displacement { value } => kinematic.extend(value.at(t)),
+                BoundarySpec::Displacement { value }
+                | BoundarySpec::TangentialDisplacement { value } => kinematic.extend(value.at(t)),
                 BoundarySpec::NormalDisplacement { value } => kinematic.push(value.at(t)),
                 BoundarySpec::RigidMotion {
                     translation,
@@ -566,6 +569,13 @@ impl Body {
                 ) => {
                     let un = value.at(t);
                     v.iter_mut().for_each(|x| *x = un);
+                }
+                (
+                    Some(BoundarySpec::TangentialDisplacement { value }),
+                    PatchCondition::TangentialDisplacement(v),
+                ) => {
+                    let u = Vector::from(value.at(t));
+                    v.iter_mut().for_each(|x| *x = u);
                 }
                 _ => {}
             }
@@ -819,6 +829,9 @@ fn build_body(
             }
             Some(BoundarySpec::NormalDisplacement { .. }) => {
                 PatchCondition::NormalDisplacement(vec![0.0; n])
+            }
+            Some(BoundarySpec::TangentialDisplacement { .. }) => {
+                PatchCondition::TangentialDisplacement(vec![Vector::zeros(); n])
             }
             Some(BoundarySpec::Symmetry) => PatchCondition::Symmetry,
             Some(BoundarySpec::Empty) => PatchCondition::Empty,

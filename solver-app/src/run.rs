@@ -950,6 +950,7 @@ fn short_tables(case: &Case) -> Vec<String> {
             let key = format!("body[{i}].boundary.{patch}");
             match spec {
                 BoundarySpec::Displacement { value }
+                | BoundarySpec::TangentialDisplacement { value }
                 | BoundarySpec::Traction { value }
                 | BoundarySpec::Force { value } => vector(format!("{key}.value"), value, &mut out),
                 BoundarySpec::NormalDisplacement { value } | BoundarySpec::Pressure { value } => {

@@ -149,6 +149,7 @@ impl SolidMomentum {
                     }
                     PatchCondition::Symmetry
                     | PatchCondition::NormalDisplacement(_)
+                    | PatchCondition::TangentialDisplacement(_)
                     | PatchCondition::Wedge(_) => {
                         // (M − I) Δu_o; the Gᵀw part is in the elimination
                         if let Some(&i) = kin.get(&(b as u32)) {
@@ -291,13 +292,14 @@ impl SolidMomentum {
                     }
                     PatchCondition::Displacement(_)
                     | PatchCondition::Symmetry
-                    | PatchCondition::NormalDisplacement(_) => {
+                    | PatchCondition::NormalDisplacement(_)
+                    | PatchCondition::TangentialDisplacement(_) => {
                         let Some(cb) = tangent(&gb, |g| self.face_point_stress(b, o, g)) else {
                             continue;
                         };
                         let mut lf = times_vector(&area);
-                        if !matches!(cond, PatchCondition::Displacement(_)) {
-                            lf = n * n.transpose() * lf;
+                        if let Some(held) = cond.held_projection(&n) {
+                            lf = held * lf;
                         }
                         let q = lf * cb;
                         // du_b − du_o: −du_o (prescribed) or (M − I) du_o + M Gᵀw

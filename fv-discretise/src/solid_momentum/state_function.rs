@@ -84,15 +84,15 @@ impl SolidMomentum {
                 let b = f - ni;
                 let n = geom.face_normal(f);
                 let base = self.u_b_old.get(b).copied().unwrap_or_else(Vector::zeros);
-                let plane = Tensor::identity() - n * n.transpose();
                 let (m, w, c) = match cond {
-                    PatchCondition::Symmetry => {
-                        let m = keep * plane;
-                        (m, self.kb[b], m * base - base)
-                    }
-                    PatchCondition::NormalDisplacement(v) => {
-                        let m = keep * plane;
-                        (m, self.kb[b], m * base + keep * n * v[f - p.start] - base)
+                    PatchCondition::Symmetry
+                    | PatchCondition::NormalDisplacement(_)
+                    | PatchCondition::TangentialDisplacement(_) => {
+                        let free = Tensor::identity()
+                            - cond.held_projection(&n).unwrap_or_else(Tensor::zeros);
+                        let m = keep * free;
+                        let held = keep * cond.held_value(f - p.start, &n);
+                        (m, self.kb[b], m * base + held - base)
                     }
                     PatchCondition::Wedge(r) => {
                         let r = r[f - p.start];
@@ -325,6 +325,54 @@ mod tests {
         b.prepare_state_function(&mesh, &geom);
         b.boundary_values_and_gradient_of_state(&mesh, &geom);
         assert_same_state(&a, &b);
+    }
+
+    #[test]
+    fn tangential_displacement_faces_are_eliminated_exactly() {
+        let mut mesh = box_mesh(
+            Vector::zeros(),
+            Vector::new(1.0, 0.8, 0.6),
+            [5, 4, 3],
+            [1.3, 1.0, 0.8],
+        )
+        .unwrap();
+        for p in &mut mesh.points {
+            let s = 0.07 * (p.x * 3.1).sin() * p.y * (1.0 - p.y / 0.8);
+            p.z += s * (p.z * (0.6 - p.z));
+            p.y += 0.05 * p.x * p.z * (0.6 - p.z);
+        }
+        let geom = MeshGeometry::new(&mesh).unwrap();
+        let n = |p: usize| mesh.patches[p].size;
+        // patches xmin xmax ymin ymax zmin zmax
+        let conditions = vec![
+            PatchCondition::TangentialDisplacement(vec![Vector::new(0.3, 0.004, -0.002); n(0)]),
+            PatchCondition::NormalDisplacement(vec![0.002; n(1)]),
+            PatchCondition::Symmetry,
+            PatchCondition::TangentialDisplacement(vec![Vector::new(0.003, 0.0, 0.001); n(3)]),
+            PatchCondition::Displacement(vec![Vector::new(0.01, -0.02, 0.005); n(4)]),
+            PatchCondition::NormalDisplacement(vec![-0.003; n(5)]),
+        ];
+        let mut a = momentum(&mesh, &geom, conditions.clone());
+        let mut b = momentum(&mesh, &geom, conditions);
+        a.u = wavy(&geom, [false; 3]);
+        b.u = a.u.clone();
+        fixed_point(&mut a, &mesh, &geom);
+        b.prepare_state_function(&mesh, &geom);
+        b.boundary_values_and_gradient_of_state(&mesh, &geom);
+        assert_same_state(&a, &b);
+        // the faces hold their tangential part and follow the cells along
+        // the normal
+        let ni = mesh.n_internal_faces();
+        for f in mesh.patches[3].faces() {
+            let nf = geom.face_normal(f);
+            let ub = b.u_b[f - ni];
+            let held = Vector::new(0.003, 0.0, 0.001);
+            let tangential = |v: Vector| v - nf * nf.dot(&v);
+            assert!(
+                (tangential(ub) - tangential(held)).norm() < 1e-12,
+                "face {f}: {ub}"
+            );
+        }
     }
 
     #[test]

@@ -18,6 +18,13 @@ pub enum BoundarySpec {
         /// Normal displacement (constant or time table).
         value: ScalarValue,
     },
+    /// `"tangential-displacement"`: the displacement's part in the face
+    /// plane prescribed (the vector's normal part ignored), zero normal
+    /// traction: a face held sideways and free along its normal.
+    TangentialDisplacement {
+        /// Displacement (constant or time table).
+        value: VectorValue,
+    },
     /// `"traction"`: prescribed traction vector.
     Traction {
         /// Traction (constant or time table).
@@ -59,7 +66,7 @@ enum Kind {
 }
 
 /// The boundary condition types by name, with what each reads.
-const KINDS: [(&str, Kind); 9] = [
+const KINDS: [(&str, Kind); 10] = [
     (
         "displacement",
         Kind::Vector(|value| BoundarySpec::Displacement { value }),
@@ -67,6 +74,10 @@ const KINDS: [(&str, Kind); 9] = [
     (
         "normal-displacement",
         Kind::Scalar(|value| BoundarySpec::NormalDisplacement { value }),
+    ),
+    (
+        "tangential-displacement",
+        Kind::Vector(|value| BoundarySpec::TangentialDisplacement { value }),
     ),
     (
         "traction",
@@ -84,8 +95,8 @@ const KINDS: [(&str, Kind); 9] = [
 ];
 
 /// The boundary condition types, as written in `type`.
-pub const BOUNDARY_TYPES: [&str; 9] = {
-    let mut names = [""; 9];
+pub const BOUNDARY_TYPES: [&str; KINDS.len()] = {
+    let mut names = [""; KINDS.len()];
     let mut i = 0;
     while i < names.len() {
         names[i] = KINDS[i].0;

@@ -330,8 +330,10 @@ impl SegregatedOperator {
                     for c in 0..3 {
                         let add = match cond {
                             PatchCondition::Displacement(_) => a,
-                            PatchCondition::Symmetry | PatchCondition::NormalDisplacement(_) => {
-                                a * n[c] * n[c]
+                            PatchCondition::Symmetry
+                            | PatchCondition::NormalDisplacement(_)
+                            | PatchCondition::TangentialDisplacement(_) => {
+                                cond.held_projection(&n).map_or(0.0, |h| a * h[(c, c)])
                             }
                             PatchCondition::Wedge(r) => {
                                 a * (1.0 - r[f - p.start][(c, c)].powi(2)).max(0.0)

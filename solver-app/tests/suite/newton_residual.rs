@@ -271,6 +271,9 @@ value = 3
 [body.boundary.zmin]
 type = "normal-displacement"
 value = 0.01
+[body.boundary.ymax]
+type = "tangential-displacement"
+value = [0.004, 0.5, -0.003]
 "#;
 
 #[test]

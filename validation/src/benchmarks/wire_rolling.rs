@@ -4,6 +4,9 @@
 //! μ = 0.1. The roll's vertical force and its torque about its axis, the
 //! reaction and moment of the roll's bore. Case:
 //! `validation/cases/wire-rolling` (units mm, N).
+use solver_app::model::Body;
+use solver_app::run::RunOutcome;
+
 use super::{read_case, RunCost};
 use crate::run_toml_in_with_history;
 
@@ -48,6 +51,9 @@ pub fn slab_pressure_band() -> (f64, f64) {
     (q * MEAN_FLOW_STRESS, 1.155 * q * MEAN_FLOW_STRESS)
 }
 
+/// Polygons in a plane (their corners in order) with one value each.
+pub type PolygonValues = Vec<(Vec<(f64, f64)>, f64)>;
+
 /// What one run measured.
 #[derive(Debug, Clone)]
 pub struct RollingRun {
@@ -64,6 +70,17 @@ pub struct RollingRun {
     pub contact_area: Vec<f64>,
     /// Newton (or outer) iterations of those increments.
     pub iterations: Vec<usize>,
+    /// The wire's faces in contact with the roll at the end: their corners
+    /// in the (x, z) plane and their contact pressure, MPa (the thesis's
+    /// horse-shoe, fig. 5.41).
+    pub contact_patch: PolygonValues,
+    /// A cut through the rolled wire at the end: the faces between two
+    /// layers of cells at x = `section_x`, their corners in the (z, y)
+    /// plane and the mean equivalent plastic strain of the two cells (the
+    /// blacksmith's cross, fig. 5.42).
+    pub section: PolygonValues,
+    /// Where the cut is, mm (the middle of the rolled length).
+    pub section_x: f64,
     /// Whether every increment converged.
     pub converged: bool,
     /// Why the run stopped, if it did.
@@ -78,6 +95,11 @@ pub fn run_edited(file: &str, edit: impl Fn(String) -> String) -> RollingRun {
     let (out, history) = run_toml_in_with_history(&edit(text), Some(&dir));
     // history.csv also holds the increment a failed run stopped in: drop it
     let n = history.rows.len() - usize::from(!out.converged && !history.rows.is_empty());
+    let section = out
+        .bodies
+        .iter()
+        .find(|b| b.name == "wire")
+        .map_or((Vec::new(), f64::NAN), rolled_section);
     RollingRun {
         time: history.column("time")[..n].to_vec(),
         force: history.column("roll/inner:Fy")[..n]
@@ -87,10 +109,94 @@ pub fn run_edited(file: &str, edit: impl Fn(String) -> String) -> RollingRun {
         torque: history.column("roll/inner:Mz")[..n].to_vec(),
         contact_area: history.column("wire/outer:contact_area")[..n].to_vec(),
         iterations: history.outer_iterations()[..n].to_vec(),
+        contact_patch: contact_patch(&out),
+        section: section.0,
+        section_x: section.1,
         converged: out.converged,
         failure: out.failure.clone(),
         cost: RunCost::of(&out),
     }
+}
+
+/// The faces of the wire's surface in contact at the end, (x, z)
+/// corners, and their pressure.
+fn contact_patch(out: &RunOutcome) -> PolygonValues {
+    let Some(c) = out.contacts.interfaces.first() else {
+        return Vec::new();
+    };
+    let surface = &c.slave.surface;
+    (0..surface.faces.len())
+        .filter(|&f| c.tractions.slave.pressure[f] > 0.0)
+        .map(|f| {
+            let (a, b) = (
+                surface.face_offsets[f] as usize,
+                surface.face_offsets[f + 1] as usize,
+            );
+            let corners = surface.face_points[a..b]
+                .iter()
+                .map(|&p| (surface.points[p as usize].x, surface.points[p as usize].z))
+                .collect();
+            (corners, c.tractions.slave.pressure[f])
+        })
+        .collect()
+}
+
+/// Cells of the rolled wire whose cross-faces' centres lie within this of
+/// the thinnest layer's height count as rolled, mm.
+const ROLLED_HEIGHT_BAND: f64 = 0.02;
+
+/// The cut through the middle of the rolled length of `wire`: the
+/// internal faces of one layer (normals along x, centres clustered in x),
+/// their (z, y) corners and the mean plastic strain of their two cells;
+/// and the layer's mean x.
+fn rolled_section(wire: &Body) -> (PolygonValues, f64) {
+    let (mesh, geom) = (&wire.mesh, &wire.geom);
+    let Some(eps_p) = wire.momentum.law.plastic_strain() else {
+        return (Vec::new(), f64::NAN);
+    };
+    let mut across: Vec<(f64, usize)> = (0..mesh.n_internal_faces())
+        .filter(|&f| geom.face_areas[f].x.abs() > 0.9 * geom.face_areas[f].norm())
+        .map(|f| (geom.face_centres[f].x, f))
+        .collect();
+    across.sort_by(|a, b| a.0.total_cmp(&b.0));
+    // layers: runs of faces whose centres lie within a tenth of a cell
+    // length of the previous one (0.33 mm on the coarse wire)
+    let mut layers: Vec<&[(f64, usize)]> = Vec::new();
+    let mut start = 0;
+    for i in 1..=across.len() {
+        if i == across.len() || across[i].0 - across[i - 1].0 > 0.1 {
+            layers.push(&across[start..i]);
+            start = i;
+        }
+    }
+    let height = |layer: &[(f64, usize)]| {
+        layer
+            .iter()
+            .map(|&(_, f)| geom.face_centres[f].y)
+            .fold(f64::MIN, f64::max)
+    };
+    let thinnest = layers.iter().map(|l| height(l)).fold(f64::MAX, f64::min);
+    let rolled: Vec<_> = layers
+        .iter()
+        .filter(|l| height(l) <= thinnest + ROLLED_HEIGHT_BAND)
+        .collect();
+    let Some(layer) = rolled.get(rolled.len() / 2) else {
+        return (Vec::new(), f64::NAN);
+    };
+    let x = layer.iter().map(|p| p.0).sum::<f64>() / layer.len() as f64;
+    let faces = layer
+        .iter()
+        .map(|&(_, f)| {
+            let corners = mesh
+                .face(f)
+                .iter()
+                .map(|&p| (mesh.points[p as usize].z, mesh.points[p as usize].y))
+                .collect();
+            let cells = (mesh.owner[f] as usize, mesh.neighbour[f] as usize);
+            (corners, 0.5 * (eps_p[cells.0] + eps_p[cells.1]))
+        })
+        .collect();
+    (faces, x)
 }
 
 #[cfg(test)]

@@ -10,6 +10,7 @@ pub mod concentric_cylinders;
 pub mod concentric_spheres;
 pub mod curved_beams;
 pub mod die_drawing;
+pub mod field_map;
 pub mod flat_punch;
 pub mod hertz_cylinder;
 pub mod nafems_punch;

@@ -147,7 +147,7 @@ impl Plot {
 }
 
 /// Registers the embedded font once; later calls return the first result.
-fn ensure_font() -> Result<(), ReportError> {
+pub(super) fn ensure_font() -> Result<(), ReportError> {
     static REGISTERED: OnceLock<bool> = OnceLock::new();
     let ok = *REGISTERED.get_or_init(|| register_font(FAMILY, FontStyle::Normal, FONT).is_ok());
     if ok {

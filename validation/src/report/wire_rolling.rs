@@ -4,6 +4,7 @@
 //! steady (within 2 % of its mean from 0.021 s) and within the slab band.
 use std::path::Path;
 
+use super::field_map::{render_field_map_png, FieldMap};
 use super::plot::{render_png, Legend, Plot, Style, BLACK_C, BLUE_C, GREEN_C, RED_C};
 use super::{
     not_run_row, run_variant, table, verdict, ReportError, Section, SectionReport, Status,
@@ -42,6 +43,32 @@ fn plots(r: &RollingRun, band: (f64, f64), area: f64) -> (Plot, Plot) {
     }
     let torque = history_plot(r, "torque", "N mm", &r.torque, Style::Line(RED_C));
     (force, torque)
+}
+
+/// The contact pressure over the wire's contact patch (the horse-shoe)
+/// and the plastic strain over a cut through the rolled wire (the
+/// blacksmith's cross), at the end of the run.
+fn maps(r: &RollingRun) -> (FieldMap, FieldMap) {
+    let patch = FieldMap {
+        title: "wire-rolling: contact pressure on the wire (top view)".into(),
+        x_label: "x, along the wire (mm)".into(),
+        y_label: "z, across (mm)".into(),
+        value_label: "p (MPa)".into(),
+        polygons: r.contact_patch.clone(),
+        width: 1000,
+    };
+    let cut = FieldMap {
+        title: format!(
+            "wire-rolling: plastic strain on a cut at x = {:.1} mm",
+            r.section_x
+        ),
+        x_label: "z, across (mm)".into(),
+        y_label: "y, towards the roll (mm)".into(),
+        value_label: "ε_p".into(),
+        polygons: r.section.clone(),
+        width: 800,
+    };
+    (patch, cut)
 }
 
 impl Section for WireRollingSection {
@@ -110,6 +137,30 @@ impl Section for WireRollingSection {
         let (ff, tf) = ("wire-rolling-force.png", "wire-rolling-torque.png");
         render_png(&fp, &out.join(ff))?;
         render_png(&tp, &out.join(tf))?;
+        let (patch, cut) = maps(&r);
+        let (pf, cf) = (
+            "wire-rolling-pressure.png",
+            "wire-rolling-plastic-strain.png",
+        );
+        render_field_map_png(&patch, &out.join(pf))?;
+        render_field_map_png(&cut, &out.join(cf))?;
+        let peak = r
+            .contact_patch
+            .iter()
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+            .map_or((f64::NAN, f64::NAN), |(c, p)| {
+                (*p, c.iter().map(|q| q.1).sum::<f64>() / c.len() as f64)
+            });
+        let strain = |pick: fn(f64, f64) -> bool| {
+            r.section
+                .iter()
+                .filter(|(c, _)| {
+                    let (z, y) = c.iter().fold((0.0, 0.0), |a, q| (a.0 + q.0, a.1 + q.1));
+                    pick(z / c.len() as f64, y / c.len() as f64)
+                })
+                .map(|(_, e)| *e)
+                .fold(f64::NAN, f64::max)
+        };
         let mut md = String::from(
             "A quarter of a Ø2.7 mm steel wire (neo-Hookean J2 plasticity, E = 210 GPa, \
              the thesis's hardening table from 1.3 GPa) rolled between flat neo-Hookean \
@@ -135,9 +186,21 @@ impl Section for WireRollingSection {
         md.push_str(&format!(
             "\n![roll force against time]({ff})\n\n![roll torque against time]({tf})\n\n"
         ));
+        md.push_str(&format!(
+            "At the end of the run: the contact pressure over the wire's contact \
+             patch (the thesis's horse-shoe, fig. 5.41; peak {:.0} MPa at z = {:.2} mm) \
+             and the equivalent plastic strain over a cut through the rolled wire \
+             (the blacksmith's cross, fig. 5.42; largest {:.3} near the axis, where \
+             the cross meets, against {:.3} at the free side z > 1 mm).\n\n\
+             ![contact pressure on the wire]({pf})\n\n![plastic strain on a cut]({cf})\n\n",
+            peak.0,
+            peak.1,
+            strain(|z, y| z < 0.3 && y < 0.3),
+            strain(|z, _| z > 1.0),
+        ));
         Ok(SectionReport {
             markdown: md,
-            images: vec![out.join(ff), out.join(tf)],
+            images: vec![out.join(ff), out.join(tf), out.join(pf), out.join(cf)],
             status: if pass { Status::Pass } else { Status::Fail },
             summary: vec![format!(
                 "{name}: force {:.0} N, torque {:.0} N mm, mean pressure {pressure:.0} MPa (slab {:.0}–{:.0}), {per_increment:.1} iterations per increment, {:.0} s: {}",

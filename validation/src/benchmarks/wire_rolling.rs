@@ -7,6 +7,7 @@
 use solver_app::model::Body;
 use solver_app::run::RunOutcome;
 
+use super::cut_across_x::{layers_across_x, plastic_strain_cut, Layer, PolygonValues};
 use super::{read_case, RunCost};
 use crate::run_toml_in_with_history;
 
@@ -50,9 +51,6 @@ pub fn slab_pressure_band() -> (f64, f64) {
     let q = 1.0 + FRICTION * contact_length() / (2.0 * mean_height);
     (q * MEAN_FLOW_STRESS, 1.155 * q * MEAN_FLOW_STRESS)
 }
-
-/// Polygons in a plane (their corners in order) with one value each.
-pub type PolygonValues = Vec<(Vec<(f64, f64)>, f64)>;
 
 /// What one run measured.
 #[derive(Debug, Clone)]
@@ -145,58 +143,29 @@ fn contact_patch(out: &RunOutcome) -> PolygonValues {
 /// the thinnest layer's height count as rolled, mm.
 const ROLLED_HEIGHT_BAND: f64 = 0.02;
 
-/// The cut through the middle of the rolled length of `wire`: the
-/// internal faces of one layer (normals along x, centres clustered in x),
-/// their (z, y) corners and the mean plastic strain of their two cells;
-/// and the layer's mean x.
+/// The cut through the middle of the rolled length of `wire` (the layers
+/// whose faces reach no higher than the thinnest one's, within
+/// [`ROLLED_HEIGHT_BAND`]): its faces' (z, y) corners and plastic
+/// strain, and its x.
 fn rolled_section(wire: &Body) -> (PolygonValues, f64) {
-    let (mesh, geom) = (&wire.mesh, &wire.geom);
-    let Some(eps_p) = wire.momentum.law.plastic_strain() else {
-        return (Vec::new(), f64::NAN);
-    };
-    let mut across: Vec<(f64, usize)> = (0..mesh.n_internal_faces())
-        .filter(|&f| geom.face_areas[f].x.abs() > 0.9 * geom.face_areas[f].norm())
-        .map(|f| (geom.face_centres[f].x, f))
-        .collect();
-    across.sort_by(|a, b| a.0.total_cmp(&b.0));
-    // layers: runs of faces whose centres lie within a tenth of a cell
-    // length of the previous one (0.33 mm on the coarse wire)
-    let mut layers: Vec<&[(f64, usize)]> = Vec::new();
-    let mut start = 0;
-    for i in 1..=across.len() {
-        if i == across.len() || across[i].0 - across[i - 1].0 > 0.1 {
-            layers.push(&across[start..i]);
-            start = i;
-        }
-    }
-    let height = |layer: &[(f64, usize)]| {
+    // a tenth of the coarse wire's layer spacing (0.33 mm)
+    let layers = layers_across_x(wire, 0.1);
+    let height = |layer: &Layer| {
         layer
+            .faces
             .iter()
-            .map(|&(_, f)| geom.face_centres[f].y)
+            .map(|&f| wire.geom.face_centres[f].y)
             .fold(f64::MIN, f64::max)
     };
-    let thinnest = layers.iter().map(|l| height(l)).fold(f64::MAX, f64::min);
+    let thinnest = layers.iter().map(height).fold(f64::MAX, f64::min);
     let rolled: Vec<_> = layers
         .iter()
         .filter(|l| height(l) <= thinnest + ROLLED_HEIGHT_BAND)
         .collect();
-    let Some(layer) = rolled.get(rolled.len() / 2) else {
-        return (Vec::new(), f64::NAN);
-    };
-    let x = layer.iter().map(|p| p.0).sum::<f64>() / layer.len() as f64;
-    let faces = layer
-        .iter()
-        .map(|&(_, f)| {
-            let corners = mesh
-                .face(f)
-                .iter()
-                .map(|&p| (mesh.points[p as usize].z, mesh.points[p as usize].y))
-                .collect();
-            let cells = (mesh.owner[f] as usize, mesh.neighbour[f] as usize);
-            (corners, 0.5 * (eps_p[cells.0] + eps_p[cells.1]))
-        })
-        .collect();
-    (faces, x)
+    match rolled.get(rolled.len() / 2) {
+        Some(layer) => (plastic_strain_cut(wire, layer), layer.x),
+        None => (Vec::new(), f64::NAN),
+    }
 }
 
 #[cfg(test)]

@@ -17,6 +17,7 @@ pub mod nafems_punch;
 pub mod plot;
 pub mod shallow_ironing;
 pub mod sphere_block;
+pub mod strand_compacting;
 pub mod twisting_hemisphere;
 pub mod wire_drawing;
 pub mod wire_rolling;
@@ -44,6 +45,7 @@ pub fn sections() -> Vec<Box<dyn Section>> {
         // industrial (§5.4)
         Box::new(wire_drawing::WireDrawingSection),
         Box::new(wire_rolling::WireRollingSection),
+        Box::new(strand_compacting::StrandCompactingSection),
         // one line per benchmark section
     ]
 }

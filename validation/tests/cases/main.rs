@@ -26,6 +26,7 @@ mod punch_probe;
 mod rigid_cylinder;
 mod shallow_ironing;
 mod sphere_block;
+mod strand_compacting;
 mod twisting_blocks;
 mod twisting_hemisphere;
 mod uniform_stress;

@@ -4,10 +4,7 @@
 //! its coarse and finest meshes within 2.7 % in force, 5.2 % in torque).
 //!
 //! Both are long and ignored by default:
-//! `cargo test --release -p validation --test cases wire_rolling -- --ignored --nocapture`
-//! (the medium needs `python3 wire.py --factor 1.5 -o wire-medium.msh` in
-//! `validation/cases/wire-rolling` first; without it the test says so and
-//! skips).
+//! `cargo test --release -p validation --test cases wire_rolling -- --ignored --nocapture`.
 use validation::benchmarks::steady_mean;
 use validation::benchmarks::wire_rolling::{
     contact_length, run_edited, slab_pressure_band, RollingRun, CLOSED_AT, STEADY_FROM,
@@ -78,14 +75,6 @@ fn wire_rolling_coarse_steady_force_within_the_slab_estimate() {
 #[test]
 #[ignore = "about 40 minutes: cargo test --release -p validation --test cases wire_rolling -- --ignored --nocapture"]
 fn wire_rolling_coarse_and_medium_agree() {
-    let dir = validation::benchmarks::cases_dir().join("wire-rolling");
-    if !dir.join("wire-medium.msh").is_file() {
-        eprintln!(
-            "skipped: {} is missing (python3 wire.py --factor 1.5 -o wire-medium.msh)",
-            dir.join("wire-medium.msh").display()
-        );
-        return;
-    }
     let ((fc, _), (tc, _)) = report("coarse", &run_edited("case.toml", |t| t));
     let ((fm, _), (tm, _)) = report("medium", &run_edited("medium.toml", |t| t));
     eprintln!(

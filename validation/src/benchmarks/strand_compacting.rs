@@ -1,0 +1,120 @@
+//! Strand compacting (thesis §5.4.3): a 1+6 strand of Ø5 mm J2-plastic
+//! steel wires drawn through a rigid die to Ø13.5 mm, frictionless, 18
+//! contact pairs. The drawing force of every wire (the x reaction on its
+//! pulled front), the deepest penetration of one surface into another,
+//! and a cut through the strand in the die's land. Case:
+//! `validation/cases/strand-compacting` (units mm, N).
+use solver_app::run::RunOutcome;
+
+use super::cut_across_x::{layers_across_x, plastic_strain_cut, PolygonValues};
+use super::{read_case, RunCost};
+use crate::run_toml_in_with_history;
+
+/// Wire radius, mm.
+pub const WIRE_RADIUS: f64 = 2.5;
+
+/// The six outer wires' forces within this fraction of their mean (issue
+/// 43).
+pub const FORCE_SPREAD: f64 = 0.02;
+
+/// No surface deeper in another than this fraction of the wire radius.
+pub const PENETRATION: f64 = 0.01;
+
+/// Middle of the die's land (x from 0 to 4 mm): where the cut is.
+pub const LAND_MIDDLE: f64 = 2.0;
+
+/// What one run measured.
+#[derive(Debug, Clone)]
+pub struct StrandRun {
+    /// Time of every converged increment (the pulled length is 24 mm × t).
+    pub time: Vec<f64>,
+    /// The core's drawing force per increment, N.
+    pub core_force: Vec<f64>,
+    /// The six outer wires' drawing forces per increment, N.
+    pub wire_forces: Vec<[f64; 6]>,
+    /// Deepest penetration at the end over every pair and both sides, mm
+    /// (the largest −gap of a face in contact).
+    pub deepest_penetration: f64,
+    /// A cut through all seven wires at the end, at the layer of each
+    /// nearest the middle of the land: (z, y) corners and plastic strain.
+    pub cut: PolygonValues,
+    /// Newton (or outer) iterations of the increments.
+    pub iterations: Vec<usize>,
+    /// Whether every increment converged.
+    pub converged: bool,
+    /// Why the run stopped, if it did.
+    pub failure: Option<String>,
+    /// Cost.
+    pub cost: RunCost,
+}
+
+impl StrandRun {
+    /// The six outer wires' mean force and their largest deviation from it
+    /// as a fraction of it, at the last increment.
+    pub fn last_spread(&self) -> Option<(f64, f64)> {
+        let f = self.wire_forces.last()?;
+        let mean = f.iter().sum::<f64>() / 6.0;
+        let dev = f.iter().map(|x| (x - mean).abs()).fold(0.0, f64::max);
+        Some((mean, dev / mean.abs()))
+    }
+}
+
+/// Runs `file` of the case (`edit` may change its text first).
+pub fn run_edited(file: &str, edit: impl Fn(String) -> String) -> StrandRun {
+    let (dir, text) = read_case("strand-compacting", file);
+    let (out, history) = run_toml_in_with_history(&edit(text), Some(&dir));
+    let n = history.rows.len() - usize::from(!out.converged && !history.rows.is_empty());
+    let wires: Vec<Vec<f64>> = (1..=6)
+        .map(|k| history.column(&format!("wire{k}/front:Fx"))[..n].to_vec())
+        .collect();
+    StrandRun {
+        time: history.column("time")[..n].to_vec(),
+        core_force: history.column("core/front:Fx")[..n].to_vec(),
+        wire_forces: (0..n)
+            .map(|i| std::array::from_fn(|k| wires[k][i]))
+            .collect(),
+        deepest_penetration: deepest_penetration(&out),
+        cut: land_cut(&out),
+        iterations: history.outer_iterations()[..n].to_vec(),
+        converged: out.converged,
+        failure: out.failure.clone(),
+        cost: RunCost::of(&out),
+    }
+}
+
+/// The largest −gap over the faces in contact of every pair, both sides.
+fn deepest_penetration(out: &RunOutcome) -> f64 {
+    out.contacts
+        .interfaces
+        .iter()
+        .flat_map(|c| [&c.tractions.master, &c.tractions.slave])
+        .flat_map(|side| {
+            side.gap
+                .iter()
+                .zip(&side.pressure)
+                .filter(|(g, p)| **p > 0.0 && g.is_finite())
+                .map(|(g, _)| -g)
+        })
+        .fold(0.0, f64::max)
+}
+
+/// Each wire's layer of cross-faces nearest the middle of the land.
+fn land_cut(out: &RunOutcome) -> PolygonValues {
+    out.bodies
+        .iter()
+        .filter(|b| !b.rigid)
+        .flat_map(|b| {
+            // a tenth of the 2 mm layers
+            let layers = layers_across_x(b, 0.2);
+            layers
+                .iter()
+                .min_by(|p, q| {
+                    (p.x - LAND_MIDDLE)
+                        .abs()
+                        .total_cmp(&(q.x - LAND_MIDDLE).abs())
+                })
+                .map(|layer| plastic_strain_cut(b, layer))
+                .unwrap_or_default()
+        })
+        .collect()
+}

@@ -291,8 +291,10 @@ mod tests {
         }
     }
 
-    #[test]
-    fn symmetry_and_normal_displacement_faces_are_eliminated_exactly() {
+    /// A graded box whose points are tilted off the axes, so that k_b ≠ 0
+    /// and the planes hold the faces only together with the gradient
+    /// (patches xmin xmax ymin ymax zmin zmax).
+    fn tilted_box() -> (PolyMesh, MeshGeometry) {
         let mut mesh = box_mesh(
             Vector::zeros(),
             Vector::new(1.0, 0.8, 0.6),
@@ -300,14 +302,36 @@ mod tests {
             [1.3, 1.0, 0.8],
         )
         .unwrap();
-        // tilt the points off the axes so that k_b ≠ 0 and the planes hold
-        // the faces only together with the gradient
         for p in &mut mesh.points {
             let s = 0.07 * (p.x * 3.1).sin() * p.y * (1.0 - p.y / 0.8);
             p.z += s * (p.z * (0.6 - p.z));
             p.y += 0.05 * p.x * p.z * (0.6 - p.z);
         }
         let geom = MeshGeometry::new(&mesh).unwrap();
+        (mesh, geom)
+    }
+
+    /// The state function's boundary values and gradient equal the
+    /// segregated fixed point's under `conditions`.
+    fn assert_eliminated_exactly(
+        mesh: &PolyMesh,
+        geom: &MeshGeometry,
+        conditions: Vec<PatchCondition>,
+    ) -> SolidMomentum {
+        let mut a = momentum(mesh, geom, conditions.clone());
+        let mut b = momentum(mesh, geom, conditions);
+        a.u = wavy(geom, [false; 3]);
+        b.u = a.u.clone();
+        fixed_point(&mut a, mesh, geom);
+        b.prepare_state_function(mesh, geom);
+        b.boundary_values_and_gradient_of_state(mesh, geom);
+        assert_same_state(&a, &b);
+        b
+    }
+
+    #[test]
+    fn symmetry_and_normal_displacement_faces_are_eliminated_exactly() {
+        let (mesh, geom) = tilted_box();
         let n = |p: usize| mesh.patches[p].size;
         let conditions = vec![
             PatchCondition::Symmetry,
@@ -317,33 +341,13 @@ mod tests {
             PatchCondition::Symmetry,
             PatchCondition::NormalDisplacement(vec![-0.003; n(5)]),
         ];
-        let mut a = momentum(&mesh, &geom, conditions.clone());
-        let mut b = momentum(&mesh, &geom, conditions);
-        a.u = wavy(&geom, [false; 3]);
-        b.u = a.u.clone();
-        fixed_point(&mut a, &mesh, &geom);
-        b.prepare_state_function(&mesh, &geom);
-        b.boundary_values_and_gradient_of_state(&mesh, &geom);
-        assert_same_state(&a, &b);
+        assert_eliminated_exactly(&mesh, &geom, conditions);
     }
 
     #[test]
     fn tangential_displacement_faces_are_eliminated_exactly() {
-        let mut mesh = box_mesh(
-            Vector::zeros(),
-            Vector::new(1.0, 0.8, 0.6),
-            [5, 4, 3],
-            [1.3, 1.0, 0.8],
-        )
-        .unwrap();
-        for p in &mut mesh.points {
-            let s = 0.07 * (p.x * 3.1).sin() * p.y * (1.0 - p.y / 0.8);
-            p.z += s * (p.z * (0.6 - p.z));
-            p.y += 0.05 * p.x * p.z * (0.6 - p.z);
-        }
-        let geom = MeshGeometry::new(&mesh).unwrap();
+        let (mesh, geom) = tilted_box();
         let n = |p: usize| mesh.patches[p].size;
-        // patches xmin xmax ymin ymax zmin zmax
         let conditions = vec![
             PatchCondition::TangentialDisplacement(vec![Vector::new(0.3, 0.004, -0.002); n(0)]),
             PatchCondition::NormalDisplacement(vec![0.002; n(1)]),
@@ -352,14 +356,7 @@ mod tests {
             PatchCondition::Displacement(vec![Vector::new(0.01, -0.02, 0.005); n(4)]),
             PatchCondition::NormalDisplacement(vec![-0.003; n(5)]),
         ];
-        let mut a = momentum(&mesh, &geom, conditions.clone());
-        let mut b = momentum(&mesh, &geom, conditions);
-        a.u = wavy(&geom, [false; 3]);
-        b.u = a.u.clone();
-        fixed_point(&mut a, &mesh, &geom);
-        b.prepare_state_function(&mesh, &geom);
-        b.boundary_values_and_gradient_of_state(&mesh, &geom);
-        assert_same_state(&a, &b);
+        let b = assert_eliminated_exactly(&mesh, &geom, conditions);
         // the faces hold their tangential part and follow the cells along
         // the normal
         let ni = mesh.n_internal_faces();

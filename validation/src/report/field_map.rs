@@ -1,10 +1,12 @@
 //! Maps of a scalar field over polygons (faces of a contact patch, a cut
 //! through a body) written as PNG: a plain description ([`FieldMap`]) and
 //! one function that draws it with `plotters` ([`render_field_map_png`]),
-//! equal scales on both axes and a colour bar.
+//! equal scales on both axes and a colour bar (viridis, as `fvc plot`'s
+//! von Mises map).
 use std::path::Path;
 
 use plotters::prelude::*;
+use solver_app::plot::field::viridis as colour;
 
 use super::plot::ensure_font;
 use super::ReportError;
@@ -28,30 +30,6 @@ pub struct FieldMap {
     /// Width of the picture in pixels (its height follows the data's
     /// aspect ratio).
     pub width: u32,
-}
-
-/// Viridis at five stops (matplotlib's), interpolated linearly.
-const VIRIDIS: [(f64, f64, f64); 5] = [
-    (68.0, 1.0, 84.0),
-    (59.0, 82.0, 139.0),
-    (33.0, 145.0, 140.0),
-    (94.0, 201.0, 98.0),
-    (253.0, 231.0, 37.0),
-];
-
-/// The colour of `s` in [0, 1] on [`VIRIDIS`].
-fn colour(s: f64) -> RGBColor {
-    let s = if s.is_finite() {
-        s.clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let at = s * (VIRIDIS.len() - 1) as f64;
-    let i = (at.floor() as usize).min(VIRIDIS.len() - 2);
-    let w = at - i as f64;
-    let (a, b) = (VIRIDIS[i], VIRIDIS[i + 1]);
-    let mix = |p: f64, q: f64| (p + w * (q - p)).round() as u8;
-    RGBColor(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
 }
 
 impl FieldMap {
@@ -155,14 +133,6 @@ pub fn render_field_map_png(map: &FieldMap, path: &Path) -> Result<(), ReportErr
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn viridis_runs_from_its_first_to_its_last_stop() {
-        assert_eq!(colour(0.0), RGBColor(68, 1, 84));
-        assert_eq!(colour(1.0), RGBColor(253, 231, 37));
-        assert_eq!(colour(0.5), RGBColor(33, 145, 140));
-        assert_eq!(colour(f64::NAN), colour(0.0));
-    }
 
     #[test]
     fn a_map_of_two_squares_is_drawn() {

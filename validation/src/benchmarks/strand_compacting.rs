@@ -17,7 +17,7 @@ pub const WIRE_RADIUS: f64 = 2.5;
 /// 43).
 pub const FORCE_SPREAD: f64 = 0.02;
 
-/// No surface deeper in another than this fraction of the wire radius.
+/// No wire deeper in another than this fraction of the wire radius.
 pub const PENETRATION: f64 = 0.01;
 
 /// Middle of the die's land (x from 0 to 4 mm): where the cut is.
@@ -32,9 +32,11 @@ pub struct StrandRun {
     pub core_force: Vec<f64>,
     /// The six outer wires' drawing forces per increment, N.
     pub wire_forces: Vec<[f64; 6]>,
-    /// Deepest penetration at the end over every pair and both sides, mm
-    /// (the largest −gap of a face in contact).
+    /// Deepest penetration of one wire into another at the end, mm.
     pub deepest_penetration: f64,
+    /// Every pair's deepest penetration at the end, mm, labelled
+    /// `slave@master`, and whether one side is the rigid die.
+    pub penetrations: Vec<(String, bool, f64)>,
     /// A cut through all seven wires at the end, at the layer of each
     /// nearest the middle of the land: (z, y) corners and plastic strain.
     pub cut: PolygonValues,
@@ -64,6 +66,7 @@ pub fn run_edited(file: &str, edit: impl Fn(String) -> String) -> StrandRun {
     let (dir, text) = read_case("strand-compacting", file);
     let (out, history) = run_toml_in_with_history(&edit(text), Some(&dir));
     let n = history.rows.len() - usize::from(!out.converged && !history.rows.is_empty());
+    let pairs = penetrations(&out);
     let wires: Vec<Vec<f64>> = (1..=6)
         .map(|k| history.column(&format!("wire{k}/front:Fx"))[..n].to_vec())
         .collect();
@@ -73,7 +76,12 @@ pub fn run_edited(file: &str, edit: impl Fn(String) -> String) -> StrandRun {
         wire_forces: (0..n)
             .map(|i| std::array::from_fn(|k| wires[k][i]))
             .collect(),
-        deepest_penetration: deepest_penetration(&out),
+        deepest_penetration: pairs
+            .iter()
+            .filter(|p| !p.1)
+            .map(|p| p.2)
+            .fold(0.0, f64::max),
+        penetrations: pairs,
         cut: land_cut(&out),
         iterations: history.outer_iterations()[..n].to_vec(),
         converged: out.converged,
@@ -82,20 +90,21 @@ pub fn run_edited(file: &str, edit: impl Fn(String) -> String) -> StrandRun {
     }
 }
 
-/// The largest −gap over the faces in contact of every pair, both sides.
-fn deepest_penetration(out: &RunOutcome) -> f64 {
+/// The largest penetration −g at a segment or slave point of every pair
+/// (the solver's contact statistics), labelled `slave@master`.
+fn penetrations(out: &RunOutcome) -> Vec<(String, bool, f64)> {
     out.contacts
         .interfaces
         .iter()
-        .flat_map(|c| [&c.tractions.master, &c.tractions.slave])
-        .flat_map(|side| {
-            side.gap
-                .iter()
-                .zip(&side.pressure)
-                .filter(|(g, p)| **p > 0.0 && g.is_finite())
-                .map(|(g, _)| -g)
+        .map(|c| {
+            let rigid = out.bodies[c.master.body].rigid || out.bodies[c.slave.body].rigid;
+            (
+                format!("{}@{}", c.slave_name, c.master_name),
+                rigid,
+                c.stats.max_penetration,
+            )
         })
-        .fold(0.0, f64::max)
+        .collect()
 }
 
 /// Each wire's layer of cross-faces nearest the middle of the land.

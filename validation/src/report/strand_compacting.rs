@@ -2,7 +2,7 @@
 //! the core and of each outer wire of a 1+6 strand against the pulled
 //! length, and a cut through the strand in the die's land; acceptance
 //! (issue 43): the six outer wires' forces within 2 % of their mean, no
-//! surface deeper than 1 % of a wire's radius in another.
+//! wire deeper than 1 % of its radius in another.
 use std::path::Path;
 
 use super::field_map::{render_field_map_png, FieldMap};
@@ -136,20 +136,31 @@ impl Section for StrandCompactingSection {
              the fronts pulled 0.4 mm per increment, the tails held sideways and free \
              along the strand (`validation/cases/strand-compacting/case.toml`). The \
              thesis gives the forces as plots; the checks are the issue's: the six \
-             outer wires within 2 % of their mean, no surface deeper than 1 % of the \
-             radius in another.\n\n",
+             outer wires within 2 % of their mean, no wire deeper than 1 % of its \
+             radius in another (the die's penetration is listed apart).\n\n",
         );
         md.push_str(&table(
             &[
                 "run",
                 "core force (N)",
                 "outer wires' mean force (N)",
-                "deepest penetration / radius",
+                "deepest wire-into-wire penetration / radius",
                 "Newton iterations per increment",
                 "wall (s)",
                 "result",
             ],
             &[row],
+        ));
+        let die = r
+            .penetrations
+            .iter()
+            .filter(|p| p.1)
+            .map(|p| p.2)
+            .fold(0.0, f64::max);
+        md.push_str(&format!(
+            "\nThe rigid die's bore into the outer wires: {die:.3} mm at the deepest \
+             ({:.2} % of the radius).\n",
+            100.0 * die / WIRE_RADIUS
         ));
         md.push_str(&format!(
             "\n![drawing force per wire]({ff})\n\n![plastic strain on a cut in the land]({cf})\n\n"

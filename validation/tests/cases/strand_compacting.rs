@@ -3,14 +3,14 @@
 //! mean) and no wire penetrates another by more than 1 % of its radius
 //! (issue 43; the die's penetration is printed). The whole case pulls
 //! 24 mm in 60 increments, about two hours; the test runs its first three
-//! (1.2 mm), about five minutes on two cores, and is ignored by default:
+//! (1.2 mm), about ten minutes on two cores, and is ignored by default:
 //! `cargo test --release -p validation --test cases strand -- --ignored --nocapture`
 use validation::benchmarks::strand_compacting::{
     run_edited, FORCE_SPREAD, PENETRATION, WIRE_RADIUS,
 };
 
 #[test]
-#[ignore = "about 5 minutes: cargo test --release -p validation --test cases strand -- --ignored --nocapture"]
+#[ignore = "about 10 minutes: cargo test --release -p validation --test cases strand -- --ignored --nocapture"]
 fn strand_outer_wires_share_the_drawing_force_without_penetrating() {
     let r = run_edited("case.toml", |t| {
         t.replace("end = 1.0", "end = 0.05")

@@ -160,6 +160,17 @@ impl PatchCondition {
         }
     }
 
+    /// Whether the condition prescribes a part of the displacement only
+    /// (symmetry, normal- and tangential-displacement).
+    pub fn holds_part(&self) -> bool {
+        matches!(
+            self,
+            PatchCondition::Symmetry
+                | PatchCondition::NormalDisplacement(_)
+                | PatchCondition::TangentialDisplacement(_)
+        )
+    }
+
     /// The prescribed displacement of face `i` (of the patch) along
     /// [`Self::held_projection`]: P u_prescribed (zero for symmetry).
     pub fn held_value(&self, i: usize, n: &Vector) -> Vector {

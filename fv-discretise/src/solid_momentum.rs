@@ -772,7 +772,7 @@ impl SolidMomentum {
     ) -> bool {
         let mut inclined = false;
         for (p, cond) in mesh.patches.iter().zip(&self.conditions) {
-            if cond.held_projection(&Vector::x()).is_none() {
+            if !cond.holds_part() {
                 continue;
             }
             for f in p.faces() {

@@ -192,14 +192,30 @@ def build(refine):
     )
 
 
-def write(path, nodes, hexes, patches):
+# Gmsh element types by node count: faces (triangle, quadrangle) and cells
+# (prism, hexahedron).
+FACE_TYPE = {3: 2, 4: 3}
+CELL_TYPE = {6: 6, 8: 5}
+
+
+def blocks(elements, types):
+    """The elements grouped by Gmsh type, in the order of `types`."""
+    by_type = {t: [] for t in types.values()}
+    for el in elements:
+        by_type[types[len(el)]].append(el)
+    return [(t, els) for t, els in by_type.items() if els]
+
+
+def write(path, nodes, hexes, patches, volume="wire"):
+    """Gmsh MSH 4.1 (ascii): one physical surface per patch (triangles and
+    quadrangles), one physical volume (prisms and hexahedra)."""
     names = list(patches)
     with open(path, "w") as f:
         f.write("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n")
         f.write(f"{len(names) + 1}\n")
         for t, name in enumerate(names, 1):
             f.write(f'2 {t} "{name}"\n')
-        f.write(f'3 {len(names) + 1} "wire"\n$EndPhysicalNames\n$Entities\n')
+        f.write(f'3 {len(names) + 1} "{volume}"\n$EndPhysicalNames\n$Entities\n')
         lo = [min(p[a] for p in nodes) for a in range(3)]
         hi = [max(p[a] for p in nodes) for a in range(3)]
         box = " ".join(f"{v:.9g}" for v in lo + hi)
@@ -211,18 +227,19 @@ def write(path, nodes, hexes, patches):
         f.writelines(f"{t}\n" for t in range(1, len(nodes) + 1))
         f.writelines(f"{x:.12g} {y:.12g} {z:.12g}\n" for (x, y, z) in nodes)
         f.write("$EndNodes\n")
-        n_el = len(hexes) + sum(len(v) for v in patches.values())
-        f.write(f"$Elements\n{len(names) + 1} {n_el} 1 {n_el}\n")
+        entity_blocks = [
+            (2, t, gtype, els)
+            for t, name in enumerate(names, 1)
+            for gtype, els in blocks(patches[name], FACE_TYPE)
+        ] + [(3, 1, gtype, els) for gtype, els in blocks(hexes, CELL_TYPE)]
+        n_el = sum(len(els) for *_, els in entity_blocks)
+        f.write(f"$Elements\n{len(entity_blocks)} {n_el} 1 {n_el}\n")
         e = 1
-        for t, name in enumerate(names, 1):
-            f.write(f"2 {t} 3 {len(patches[name])}\n")
-            for q in patches[name]:
-                f.write(f"{e} {' '.join(map(str, q))}\n")
+        for dim, tag, gtype, els in entity_blocks:
+            f.write(f"{dim} {tag} {gtype} {len(els)}\n")
+            for el in els:
+                f.write(f"{e} {' '.join(map(str, el))}\n")
                 e += 1
-        f.write(f"3 1 5 {len(hexes)}\n")
-        for h in hexes:
-            f.write(f"{e} {' '.join(map(str, h))}\n")
-            e += 1
         f.write("$EndElements\n")
 
 

@@ -155,7 +155,8 @@ fn wire_drawing_axisymmetric_wedge_between_thesis_coarse_and_richardson() {
 /// first order, as faceted contact surfaces and the plastic front
 /// allow), and Richardson's extrapolation at that order lies within 2 %
 /// of the thesis's 282.8 N (measured 282.1 N). README.md
-/// ("Axisymmetric") adds the fourth mesh and CalculiX's forces.
+/// ("Axisymmetric") adds the series in 200 increments (order 0.64,
+/// 282.7 N) and CalculiX's forces on the same problem.
 #[test]
 #[ignore = "about 7 minutes: cargo test --release -p validation --test cases wire_drawing_axisymmetric_mesh -- --ignored --nocapture"]
 fn wire_drawing_axisymmetric_mesh_convergence_and_richardson() {

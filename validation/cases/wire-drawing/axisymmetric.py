@@ -28,12 +28,10 @@ growth becomes 1.3^(1/2^k)). Patches "contact", "outer", "entry", "exit",
 import argparse
 import math
 
-from wire import LENGTH, NOSE, radius, write
+from wire import LENGTH, NOSE, R_BEARING, TAN_APPROACH, radius, write
 
 HALF_ANGLE = math.radians(2.5)
-TAN_APPROACH = math.tan(math.radians(6.0))
 TAN_RELIEF = math.tan(math.radians(15.0))
-R_BEARING = 0.86
 LAND = 0.45
 X_ENTRY = -2.0
 X_EXIT = LAND + 0.6
@@ -45,7 +43,7 @@ def revolve(section, quads, across, ends, lateral):
     point (x, r) at index i along x and j across (j = 0 the inner side),
     `quads` the section's cell count (ni, nj). Points with r = 0 lie on the
     axis, shared by both wedge planes, and make their cells prisms.
-    Patches: `ends` (i = 0, i = ni sides), `lateral` (j = nj side), "front"
+    Patches: `ends` (the i = ni side, the i = 0 side), `lateral` (j = nj), "front"
     (+2.5°), "back" (−2.5°); with `across` also the j = 0 side."""
     ni, nj = quads
     nodes, tag = [], {}

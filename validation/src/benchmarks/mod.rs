@@ -44,13 +44,16 @@ pub fn read_case(case: &str, file: &str) -> (PathBuf, String) {
 /// run the original mesh.
 pub fn read_case_on_mesh(case: &str, file: &str, from: &str, to: &str) -> (PathBuf, String) {
     let (dir, text) = read_case(case, file);
-    let quoted = format!("\"{from}\"");
-    assert!(
-        text.contains(&quoted),
-        "{case}/{file} no longer names {from}"
-    );
-    let text = text.replace(&quoted, &format!("\"{to}\""));
+    let text = replace_mesh(&text, &format!("{case}/{file}"), from, to);
     (dir, text)
+}
+
+/// Case text `text` (named `name` in messages) with its mesh file `from`
+/// replaced by `to`; panics when the text does not name `from`.
+pub fn replace_mesh(text: &str, name: &str, from: &str, to: &str) -> String {
+    let quoted = format!("\"{from}\"");
+    assert!(text.contains(&quoted), "{name} no longer names {from}");
+    text.replace(&quoted, &format!("\"{to}\""))
 }
 
 /// The case text pinned to the segregated method (`[solver] nonlinear =

@@ -23,6 +23,18 @@ pub const PENETRATION: f64 = 0.01;
 /// Middle of the die's land (x from 0 to 4 mm): where the cut is.
 pub const LAND_MIDDLE: f64 = 2.0;
 
+/// The deepest penetration of one contact pair (the solver's contact
+/// statistics: −g at a segment or slave point).
+#[derive(Debug, Clone)]
+pub struct PairPenetration {
+    /// `slave@master`.
+    pub pair: String,
+    /// Whether one side is the rigid die.
+    pub die: bool,
+    /// Depth, mm.
+    pub depth: f64,
+}
+
 /// What one run measured.
 #[derive(Debug, Clone)]
 pub struct StrandRun {
@@ -32,11 +44,8 @@ pub struct StrandRun {
     pub core_force: Vec<f64>,
     /// The six outer wires' drawing forces per increment, N.
     pub wire_forces: Vec<[f64; 6]>,
-    /// Deepest penetration of one wire into another at the end, mm.
-    pub deepest_penetration: f64,
-    /// Every pair's deepest penetration at the end, mm, labelled
-    /// `slave@master`, and whether one side is the rigid die.
-    pub penetrations: Vec<(String, bool, f64)>,
+    /// Every pair's deepest penetration at the end.
+    pub penetrations: Vec<PairPenetration>,
     /// A cut through all seven wires at the end, at the layer of each
     /// nearest the middle of the land: (z, y) corners and plastic strain.
     pub cut: PolygonValues,
@@ -51,6 +60,16 @@ pub struct StrandRun {
 }
 
 impl StrandRun {
+    /// The deepest penetration at the end of one wire into another
+    /// (`die` false) or of the rigid die into a wire (`die` true), mm.
+    pub fn deepest_penetration(&self, die: bool) -> f64 {
+        self.penetrations
+            .iter()
+            .filter(|p| p.die == die)
+            .map(|p| p.depth)
+            .fold(0.0, f64::max)
+    }
+
     /// The six outer wires' mean force and their largest deviation from it
     /// as a fraction of it, at the last increment.
     pub fn last_spread(&self) -> Option<(f64, f64)> {
@@ -66,7 +85,6 @@ pub fn run_edited(file: &str, edit: impl Fn(String) -> String) -> StrandRun {
     let (dir, text) = read_case("strand-compacting", file);
     let (out, history) = run_toml_in_with_history(&edit(text), Some(&dir));
     let n = history.rows.len() - usize::from(!out.converged && !history.rows.is_empty());
-    let pairs = penetrations(&out);
     let wires: Vec<Vec<f64>> = (1..=6)
         .map(|k| history.column(&format!("wire{k}/front:Fx"))[..n].to_vec())
         .collect();
@@ -76,12 +94,7 @@ pub fn run_edited(file: &str, edit: impl Fn(String) -> String) -> StrandRun {
         wire_forces: (0..n)
             .map(|i| std::array::from_fn(|k| wires[k][i]))
             .collect(),
-        deepest_penetration: pairs
-            .iter()
-            .filter(|p| !p.1)
-            .map(|p| p.2)
-            .fold(0.0, f64::max),
-        penetrations: pairs,
+        penetrations: penetrations(&out),
         cut: land_cut(&out),
         iterations: history.outer_iterations()[..n].to_vec(),
         converged: out.converged,
@@ -90,19 +103,15 @@ pub fn run_edited(file: &str, edit: impl Fn(String) -> String) -> StrandRun {
     }
 }
 
-/// The largest penetration −g at a segment or slave point of every pair
-/// (the solver's contact statistics), labelled `slave@master`.
-fn penetrations(out: &RunOutcome) -> Vec<(String, bool, f64)> {
+/// The deepest penetration of every pair.
+fn penetrations(out: &RunOutcome) -> Vec<PairPenetration> {
     out.contacts
         .interfaces
         .iter()
-        .map(|c| {
-            let rigid = out.bodies[c.master.body].rigid || out.bodies[c.slave.body].rigid;
-            (
-                format!("{}@{}", c.slave_name, c.master_name),
-                rigid,
-                c.stats.max_penetration,
-            )
+        .map(|c| PairPenetration {
+            pair: format!("{}@{}", c.slave_name, c.master_name),
+            die: out.bodies[c.master.body].rigid || out.bodies[c.slave.body].rigid,
+            depth: c.stats.max_penetration,
         })
         .collect()
 }

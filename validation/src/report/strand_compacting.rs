@@ -102,7 +102,7 @@ impl Section for StrandCompactingSection {
                 100.0 * spread
             ));
         }
-        let depth = r.deepest_penetration / WIRE_RADIUS;
+        let depth = r.deepest_penetration(false) / WIRE_RADIUS;
         if !(depth < PENETRATION) {
             missed.push(format!("penetration {:.2} % of the radius", 100.0 * depth));
         }
@@ -154,12 +154,7 @@ impl Section for StrandCompactingSection {
             ],
             &[row],
         ));
-        let die = r
-            .penetrations
-            .iter()
-            .filter(|p| p.1)
-            .map(|p| p.2)
-            .fold(0.0, f64::max);
+        let die = r.deepest_penetration(true);
         md.push_str(&format!(
             "\nThe rigid die's bore into the outer wires: {die:.3} mm at the deepest \
              ({:.2} % of the radius).\n",

@@ -30,24 +30,25 @@ fn strand_outer_wires_share_the_drawing_force_without_penetrating() {
         );
     }
     let (mean, spread) = r.last_spread().expect("three increments");
+    let deepest = r.deepest_penetration(false);
     eprintln!(
-        "  outer wires {mean:.1} N ± {:.3} %, deepest penetration {:.2e} mm ({:.2} % of the radius)",
+        "  outer wires {mean:.1} N ± {:.3} %, deepest penetration {deepest:.2e} mm ({:.2} % of the radius)",
         100.0 * spread,
-        r.deepest_penetration,
-        100.0 * r.deepest_penetration / WIRE_RADIUS
+        100.0 * deepest / WIRE_RADIUS
     );
-    for (pair, rigid, depth) in &r.penetrations {
+    for p in &r.penetrations {
         eprintln!(
-            "  {pair}: {depth:.2e} mm ({:.2} %){}",
-            100.0 * depth / WIRE_RADIUS,
-            if *rigid { ", the rigid die" } else { "" }
+            "  {}: {:.2e} mm ({:.2} %){}",
+            p.pair,
+            p.depth,
+            100.0 * p.depth / WIRE_RADIUS,
+            if p.die { ", the rigid die" } else { "" }
         );
     }
     assert!(spread < FORCE_SPREAD, "spread {spread}");
     assert!(
-        r.deepest_penetration < PENETRATION * WIRE_RADIUS,
-        "penetration {} mm",
-        r.deepest_penetration
+        deepest < PENETRATION * WIRE_RADIUS,
+        "penetration {deepest} mm"
     );
     // the strand is drawn: every wire pulls, more with every increment
     for k in 1..r.wire_forces.len() {

@@ -1,10 +1,16 @@
 //! Compressed sparse row (CSR) storage for cell-centred finite-volume matrices.
 //!
-//! The sparse linear algebra of this crate (this module, [`crate::pcg_ic0`],
-//! [`crate::bicgstab_ilu0`]) is written by hand: no maintained crate offers a
-//! cache-friendly IC(0)-PCG with a reusable factorisation (faer's matrix-free
-//! CG costs several mat-vecs per iteration, sprs has no incomplete
-//! factorisations). Only the direct solver ([`crate::direct`]) wraps faer.
+//! The storage is sprs's: [`CsrMatrix`] holds a `sprs::CsMatI<f64, u32>`
+//! ([`CsrMatrix::as_sprs`], [`CsrMatrix::into_sprs`], and `TryFrom` for a
+//! matrix built with sprs), the type the crates exchange. What sprs does not
+//! do is written by hand over its index and value slices: the mat-vec and
+//! triangular sweeps without bounds checks, the incomplete factorisations
+//! and their preconditioned Krylov solvers ([`crate::pcg_ic0`],
+//! [`crate::bicgstab_ilu0`]; sprs has neither, faer's matrix-free CG costs
+//! several mat-vecs per iteration), the face slots and the pattern growth
+//! below. Only the direct solver ([`crate::direct`]) wraps faer. Measured
+//! on the 64³ box (docs/kernel-performance.md, "sprs storage"): the same
+//! instructions per PCG iteration as the hand-written arrays it replaced.
 //!
 //! # Layout
 //!
@@ -53,6 +59,8 @@
 
 use std::sync::atomic::{AtomicU64, Ordering};
 
+use sprs::CsMatI;
+
 use crate::linear_solver::LinearSolverError;
 
 /// Source of process-wide unique pattern identifiers.
@@ -69,21 +77,18 @@ const NONE: u32 = u32::MAX;
 /// Square sparse matrix in CSR form with sorted rows and a diagonal entry in every row.
 ///
 /// Invariants (the fields are private; every constructor and
-/// [`CsrMatrix::add_entries`] establishes them, and the unchecked kernels
-/// rely on them): `row_ptr.len() == n + 1`, `row_ptr[0] == 0`, `row_ptr` is
+/// [`CsrMatrix::add_entries`] establishes them, sprs's structure check
+/// confirms the first five, and the unchecked kernels rely on them):
+/// `row_ptr.len() == n + 1`, `row_ptr[0] == 0`, `row_ptr` is
 /// nondecreasing, `row_ptr[n] == col_idx.len() == values.len()`, every
 /// `col_idx[k] < n`, columns strictly increase within a row, and
-/// `col_idx[diag[i]] == i` with `diag[i]` inside row `i`.
+/// `col_idx[diag[i]] == i` with `diag[i]` inside row `i`. Only the values
+/// can change in place ([`CsrMatrix::values_mut`]).
 #[derive(Debug, Clone)]
 pub struct CsrMatrix {
-    /// Number of rows (= columns).
-    n: usize,
-    /// Row `i` occupies `row_ptr[i]..row_ptr[i + 1]`; length `n + 1`.
-    row_ptr: Vec<u32>,
-    /// Column indices, strictly increasing within each row.
-    col_idx: Vec<u32>,
-    /// Values, parallel to `col_idx`.
-    values: Vec<f64>,
+    /// The matrix: row `i` occupies `row_ptr[i]..row_ptr[i + 1]` of the
+    /// column indices (strictly increasing within each row) and the values.
+    mat: CsMatI<f64, u32>,
     /// Value index of the diagonal entry of each row.
     diag: Vec<u32>,
     /// Identifier of the sparsity pattern (see the module documentation).
@@ -93,10 +98,25 @@ pub struct CsrMatrix {
 impl PartialEq for CsrMatrix {
     /// Equal size, pattern and values (the pattern id is ignored).
     fn eq(&self, other: &Self) -> bool {
-        self.n == other.n
-            && self.row_ptr == other.row_ptr
-            && self.col_idx == other.col_idx
-            && self.values == other.values
+        self.mat == other.mat
+    }
+}
+
+impl TryFrom<CsMatI<f64, u32>> for CsrMatrix {
+    type Error = LinearSolverError;
+
+    /// Adopts a square matrix built with sprs (CSC storage is converted);
+    /// a row without a diagonal entry gets an explicit zero one.
+    fn try_from(m: CsMatI<f64, u32>) -> Result<Self, Self::Error> {
+        if m.rows() != m.cols() {
+            return Err(LinearSolverError::DimensionMismatch {
+                what: "columns of a square matrix",
+                expected: m.rows(),
+                found: m.cols(),
+            });
+        }
+        let triplets: Vec<(u32, u32, f64)> = m.iter().map(|(&v, (r, c))| (r, c, v)).collect();
+        CsrMatrix::from_triplets(m.rows(), &triplets)
     }
 }
 
@@ -281,14 +301,7 @@ impl CsrMatrix {
             lower: slot_of.iter().skip(1).step_by(2).copied().collect(),
         };
         let nnz = col_idx.len();
-        let a = CsrMatrix {
-            n: n_cells,
-            row_ptr,
-            col_idx,
-            values: vec![0.0; nnz],
-            diag,
-            pattern_id: fresh_pattern_id(),
-        };
+        let a = CsrMatrix::from_parts(n_cells, row_ptr, col_idx, vec![0.0; nnz], diag);
         (a, slots)
     }
 
@@ -304,44 +317,75 @@ impl CsrMatrix {
         for (t, &s) in triplets.iter().zip(&slot_of) {
             values[s as usize] += t.2;
         }
-        Ok(CsrMatrix {
-            n,
-            row_ptr,
-            col_idx,
-            values,
+        Ok(CsrMatrix::from_parts(n, row_ptr, col_idx, values, diag))
+    }
+
+    /// Wraps arrays built by [`build_pattern`] (or the merge of
+    /// [`CsrMatrix::add_entries`]) with a new pattern id.
+    ///
+    /// # Panics
+    /// If the arrays break the CSR structure (sprs checks it: an internal
+    /// error, never a user's).
+    fn from_parts(
+        n: usize,
+        row_ptr: Vec<u32>,
+        col_idx: Vec<u32>,
+        values: Vec<f64>,
+        diag: Vec<u32>,
+    ) -> CsrMatrix {
+        let mat = CsMatI::try_new((n, n), row_ptr, col_idx, values)
+            .unwrap_or_else(|(.., e)| panic!("CsrMatrix: invalid CSR structure built: {e}"));
+        CsrMatrix {
+            mat,
             diag,
             pattern_id: fresh_pattern_id(),
-        })
+        }
+    }
+
+    /// The matrix as sprs's CSR type, the matrix the crates exchange.
+    pub fn as_sprs(&self) -> &CsMatI<f64, u32> {
+        &self.mat
+    }
+
+    /// Unwraps the sprs matrix (the diagonal positions and the pattern id are dropped).
+    pub fn into_sprs(self) -> CsMatI<f64, u32> {
+        self.mat
     }
 
     /// Number of rows (= columns).
+    #[inline]
     pub fn n(&self) -> usize {
-        self.n
+        self.mat.rows()
     }
 
     /// Number of stored entries.
+    #[inline]
     pub fn nnz(&self) -> usize {
-        self.col_idx.len()
+        self.mat.nnz()
     }
 
     /// Row pointers: row `i` occupies value indices `row_ptr[i]..row_ptr[i + 1]`.
+    #[inline]
     pub fn row_ptr(&self) -> &[u32] {
-        &self.row_ptr
+        self.mat.indptr().into_raw_storage()
     }
 
     /// Column indices (sorted within each row).
+    #[inline]
     pub fn col_idx(&self) -> &[u32] {
-        &self.col_idx
+        self.mat.indices()
     }
 
     /// Stored values.
+    #[inline]
     pub fn values(&self) -> &[f64] {
-        &self.values
+        self.mat.data()
     }
 
     /// Mutable values, for assembly through [`FaceSlots`] and [`CsrMatrix::diag_index`] (the pattern stays fixed).
+    #[inline]
     pub fn values_mut(&mut self) -> &mut [f64] {
-        &mut self.values
+        self.mat.data_mut()
     }
 
     /// Value index of each row's diagonal entry.
@@ -356,23 +400,26 @@ impl CsrMatrix {
 
     /// Column indices and values of row `i`.
     pub fn row(&self, i: usize) -> (&[u32], &[f64]) {
-        let (s, e) = (self.row_ptr[i] as usize, self.row_ptr[i + 1] as usize);
-        (&self.col_idx[s..e], &self.values[s..e])
+        let (s, e) = (self.row_ptr()[i] as usize, self.row_ptr()[i + 1] as usize);
+        (&self.col_idx()[s..e], &self.values()[s..e])
     }
 
     /// Value index of entry `(row, col)`, if stored (binary search).
     pub fn entry_index(&self, row: usize, col: usize) -> Option<usize> {
-        if row >= self.n {
+        if row >= self.n() {
             return None;
         }
-        let (s, e) = (self.row_ptr[row] as usize, self.row_ptr[row + 1] as usize);
+        let (s, e) = (
+            self.row_ptr()[row] as usize,
+            self.row_ptr()[row + 1] as usize,
+        );
         let c = u32::try_from(col).ok()?;
-        self.col_idx[s..e].binary_search(&c).ok().map(|k| s + k)
+        self.col_idx()[s..e].binary_search(&c).ok().map(|k| s + k)
     }
 
     /// Sets every stored value to zero (the pattern is kept).
     pub fn fill_zero(&mut self) {
-        self.values.fill(0.0);
+        self.values_mut().fill(0.0);
     }
 
     /// Computes `y = A x` without allocating.
@@ -380,8 +427,8 @@ impl CsrMatrix {
     /// # Panics
     /// If `x.len() != n` or `y.len() != n`.
     pub fn mul_vec(&self, x: &[f64], y: &mut [f64]) {
-        assert_eq!(x.len(), self.n, "mul_vec: x has the wrong length");
-        assert_eq!(y.len(), self.n, "mul_vec: y has the wrong length");
+        assert_eq!(x.len(), self.n(), "mul_vec: x has the wrong length");
+        assert_eq!(y.len(), self.n(), "mul_vec: y has the wrong length");
         for (i, yi) in y.iter_mut().enumerate() {
             *yi = self.row_times(i, x);
         }
@@ -392,9 +439,9 @@ impl CsrMatrix {
     /// # Panics
     /// If a slice length differs from `n`.
     pub fn residual(&self, b: &[f64], x: &[f64], r: &mut [f64]) -> f64 {
-        assert_eq!(x.len(), self.n, "residual: x has the wrong length");
-        assert_eq!(b.len(), self.n, "residual: b has the wrong length");
-        assert_eq!(r.len(), self.n, "residual: r has the wrong length");
+        assert_eq!(x.len(), self.n(), "residual: x has the wrong length");
+        assert_eq!(b.len(), self.n(), "residual: b has the wrong length");
+        assert_eq!(r.len(), self.n(), "residual: r has the wrong length");
         let mut rr = 0.0;
         for (i, (ri, &bi)) in r.iter_mut().zip(b).enumerate() {
             let v = bi - self.row_times(i, x);
@@ -411,16 +458,17 @@ impl CsrMatrix {
     #[inline(always)]
     pub(crate) fn row_times(&self, i: usize, x: &[f64]) -> f64 {
         assert!(
-            i < self.n && x.len() == self.n,
+            i < self.n() && x.len() == self.n(),
             "row_times: index or length out of range"
         );
         // SAFETY: i < n and row_ptr.len() == n + 1, so i and i + 1 index row_ptr;
         // row_ptr is nondecreasing with row_ptr[n] == col_idx.len() == values.len(),
         // and every column index is < n == x.len() (type invariants).
+        let row_ptr = self.row_ptr();
         unsafe {
-            let s = *self.row_ptr.get_unchecked(i) as usize;
-            let e = *self.row_ptr.get_unchecked(i + 1) as usize;
-            dot_unchecked(&self.col_idx, &self.values, s, e, x)
+            let s = *row_ptr.get_unchecked(i) as usize;
+            let e = *row_ptr.get_unchecked(i + 1) as usize;
+            dot_unchecked(self.col_idx(), self.values(), s, e, x)
         }
     }
 
@@ -441,32 +489,33 @@ impl CsrMatrix {
         z_next: f64,
     ) -> f64 {
         assert!(
-            i < self.n && z.len() == self.n,
+            i < self.n() && z.len() == self.n(),
             "backward_row_of_upper: index or length out of range"
         );
         // SAFETY: i < n indexes row_ptr and diag; diag[i] < row_ptr[i + 1] <=
         // col_idx.len() == values.len(), so the upper part of row i,
         // diag[i] + 1..row_ptr[i + 1], lies within them, and every column
         // index is < n == z.len() (type invariants).
+        let (col_idx, values) = (self.col_idx(), self.values());
         unsafe {
             let s = *self.diag.get_unchecked(i) as usize + 1;
-            let e = *self.row_ptr.get_unchecked(i + 1) as usize;
+            let e = *self.row_ptr().get_unchecked(i + 1) as usize;
             if s == e {
                 return w_i;
             }
             let mut sum = 0.0;
             for k in s + 1..e {
-                let c = *self.col_idx.get_unchecked(k) as usize;
-                sum += scale * *self.values.get_unchecked(k) * *z.get_unchecked(c);
+                let c = *col_idx.get_unchecked(k) as usize;
+                sum += scale * *values.get_unchecked(k) * *z.get_unchecked(c);
             }
             let t = w_i - sum;
-            let c = *self.col_idx.get_unchecked(s) as usize;
+            let c = *col_idx.get_unchecked(s) as usize;
             let zc = if c == i + 1 {
                 z_next
             } else {
                 *z.get_unchecked(c)
             };
-            t - scale * *self.values.get_unchecked(s) * zc
+            t - scale * *values.get_unchecked(s) * zc
         }
     }
 
@@ -477,30 +526,30 @@ impl CsrMatrix {
     #[inline(always)]
     #[allow(clippy::type_complexity)]
     pub(crate) fn diagonal_and_upper(&self, i: usize) -> (f64, (&[u32], &[f64])) {
-        let (d, e) = (self.diag[i] as usize, self.row_ptr[i + 1] as usize);
+        let (d, e) = (self.diag[i] as usize, self.row_ptr()[i + 1] as usize);
         (
-            self.values[d],
-            (&self.col_idx[d + 1..e], &self.values[d + 1..e]),
+            self.values()[d],
+            (&self.col_idx()[d + 1..e], &self.values()[d + 1..e]),
         )
     }
 
     /// Whether the matrix is symmetric in pattern and values, to the bit.
     pub fn is_symmetric(&self) -> bool {
         let mut lower = 0usize;
-        for i in 0..self.n {
-            let (s, d) = (self.row_ptr[i] as usize, self.diag[i] as usize);
+        for i in 0..self.n() {
+            let (s, d) = (self.row_ptr()[i] as usize, self.diag[i] as usize);
             lower += d - s;
             for k in s..d {
-                let j = self.col_idx[k] as usize;
+                let j = self.col_idx()[k] as usize;
                 match self.entry_index(j, i) {
-                    Some(kt) if self.values[kt].to_bits() == self.values[k].to_bits() => {}
+                    Some(kt) if self.values()[kt].to_bits() == self.values()[k].to_bits() => {}
                     _ => return false,
                 }
             }
         }
         // every lower entry has its transpose: the pattern is symmetric when
         // the upper triangle has no more entries
-        2 * lower + self.n == self.nnz()
+        2 * lower + self.n() == self.nnz()
     }
 
     /// Whether the graph of the pattern (rows as vertices, off-diagonal
@@ -511,14 +560,14 @@ impl CsrMatrix {
     /// meshes (the 7-point face graph) have none; tetrahedral and polyhedral
     /// ones do. Reads the lower triangle only (a symmetric pattern).
     pub fn is_triangle_free(&self) -> bool {
-        for i in 0..self.n {
-            let (s, d) = (self.row_ptr[i] as usize, self.diag[i] as usize);
-            let lower_i = &self.col_idx[s..d];
+        for i in 0..self.n() {
+            let (s, d) = (self.row_ptr()[i] as usize, self.diag[i] as usize);
+            let lower_i = &self.col_idx()[s..d];
             for &j in lower_i {
                 let j = j as usize;
-                let (sj, dj) = (self.row_ptr[j] as usize, self.diag[j] as usize);
+                let (sj, dj) = (self.row_ptr()[j] as usize, self.diag[j] as usize);
                 // a common column c < j of rows i and j closes a triangle
-                let lower_j = &self.col_idx[sj..dj];
+                let lower_j = &self.col_idx()[sj..dj];
                 let (mut p, mut q) = (0, 0);
                 while p < lower_i.len() && q < lower_j.len() && (lower_i[p] as usize) < j {
                     match lower_i[p].cmp(&lower_j[q]) {
@@ -538,25 +587,25 @@ impl CsrMatrix {
     /// If `i >= n`.
     #[inline(always)]
     pub(crate) fn min_col(&self, i: usize) -> usize {
-        assert!(i < self.n, "min_col: row out of range");
+        assert!(i < self.n(), "min_col: row out of range");
         // SAFETY: i < n indexes row_ptr (length n + 1); row i holds at least its
         // diagonal entry, so row_ptr[i] < row_ptr[i + 1] <= col_idx.len().
         unsafe {
             *self
-                .col_idx
-                .get_unchecked(*self.row_ptr.get_unchecked(i) as usize) as usize
+                .col_idx()
+                .get_unchecked(*self.row_ptr().get_unchecked(i) as usize) as usize
         }
     }
 
     /// Largest `|a_ij − a_ji|` over the stored entries (entries missing on one side count as 0).
     pub fn max_asymmetry(&self) -> f64 {
         let mut m: f64 = 0.0;
-        for i in 0..self.n {
-            let (s, e) = (self.row_ptr[i] as usize, self.row_ptr[i + 1] as usize);
+        for i in 0..self.n() {
+            let (s, e) = (self.row_ptr()[i] as usize, self.row_ptr()[i + 1] as usize);
             for k in s..e {
-                let j = self.col_idx[k] as usize;
-                let t = self.entry_index(j, i).map_or(0.0, |kt| self.values[kt]);
-                m = m.max((self.values[k] - t).abs());
+                let j = self.col_idx()[k] as usize;
+                let t = self.entry_index(j, i).map_or(0.0, |kt| self.values()[kt]);
+                m = m.max((self.values()[k] - t).abs());
             }
         }
         m
@@ -571,7 +620,7 @@ impl CsrMatrix {
     pub fn find_entries(&self, extra: &[(u32, u32)], out: &mut Vec<u32>) -> bool {
         out.clear();
         for &(r, c) in extra {
-            if r as usize >= self.n || c as usize >= self.n {
+            if r as usize >= self.n() || c as usize >= self.n() {
                 return false;
             }
             match self.entry_index(r as usize, c as usize) {
@@ -596,7 +645,7 @@ impl CsrMatrix {
         &mut self,
         extra: &[(u32, u32)],
     ) -> Result<PatternGrowth, LinearSolverError> {
-        let n = self.n;
+        let n = self.n();
         for &(r, c) in extra {
             if r as usize >= n || c as usize >= n {
                 return Err(LinearSolverError::IndexOutOfBounds { row: r, col: c, n });
@@ -632,16 +681,16 @@ impl CsrMatrix {
         row_ptr.push(0u32);
         let mut q = 0; // cursor in `new`
         for i in 0..n {
-            let (s, e) = (self.row_ptr[i] as usize, self.row_ptr[i + 1] as usize);
+            let (s, e) = (self.row_ptr()[i] as usize, self.row_ptr()[i + 1] as usize);
             let mut k = s;
             loop {
                 let next_new = (q < new.len() && new[q].0 as usize == i).then(|| new[q].1);
                 match (k < e, next_new) {
                     (false, None) => break,
-                    (true, nn) if nn.is_none_or(|c| self.col_idx[k] < c) => {
+                    (true, nn) if nn.is_none_or(|c| self.col_idx()[k] < c) => {
                         old_to_new[k] = col_idx.len() as u32;
-                        col_idx.push(self.col_idx[k]);
-                        values.push(self.values[k]);
+                        col_idx.push(self.col_idx()[k]);
+                        values.push(self.values()[k]);
                         k += 1;
                     }
                     (_, Some(c)) => {
@@ -654,13 +703,8 @@ impl CsrMatrix {
             }
             row_ptr.push(col_idx.len() as u32);
         }
-        for d in self.diag.iter_mut() {
-            *d = old_to_new[*d as usize];
-        }
-        self.row_ptr = row_ptr;
-        self.col_idx = col_idx;
-        self.values = values;
-        self.pattern_id = fresh_pattern_id();
+        let diag = self.diag.iter().map(|&d| old_to_new[d as usize]).collect();
+        *self = CsrMatrix::from_parts(n, row_ptr, col_idx, values, diag);
         let slots = extra
             .iter()
             .map(|&(r, c)| {
@@ -676,9 +720,9 @@ impl CsrMatrix {
     /// `csr_to_csc[k]` is the CSC position of CSR value index `k`; row
     /// indices are sorted within each column.
     pub(crate) fn csc_structure(&self) -> (Vec<usize>, Vec<usize>, Vec<u32>) {
-        let n = self.n;
+        let n = self.n();
         let mut col_ptr = vec![0usize; n + 1];
-        for &c in &self.col_idx {
+        for &c in self.col_idx() {
             col_ptr[c as usize + 1] += 1;
         }
         for j in 0..n {
@@ -688,8 +732,8 @@ impl CsrMatrix {
         let mut row_idx = vec![0usize; self.nnz()];
         let mut map = vec![0u32; self.nnz()];
         for i in 0..n {
-            let (s, e) = (self.row_ptr[i] as usize, self.row_ptr[i + 1] as usize);
-            for (&c, m) in self.col_idx[s..e].iter().zip(&mut map[s..e]) {
+            let (s, e) = (self.row_ptr()[i] as usize, self.row_ptr()[i + 1] as usize);
+            for (&c, m) in self.col_idx()[s..e].iter().zip(&mut map[s..e]) {
                 let p = next[c as usize];
                 next[c as usize] += 1;
                 row_idx[p] = i;
@@ -704,10 +748,15 @@ impl CsrMatrix {
         let (col_ptr, row_idx, map) = self.csc_structure();
         let mut val = vec![0.0; self.nnz()];
         for (k, &p) in map.iter().enumerate() {
-            val[p as usize] = self.values[k];
+            val[p as usize] = self.values()[k];
         }
-        let symbolic =
-            faer::sparse::SymbolicSparseColMat::new_checked(self.n, self.n, col_ptr, None, row_idx);
+        let symbolic = faer::sparse::SymbolicSparseColMat::new_checked(
+            self.n(),
+            self.n(),
+            col_ptr,
+            None,
+            row_idx,
+        );
         faer::sparse::SparseColMat::new(symbolic, val)
     }
 }
@@ -1241,6 +1290,42 @@ mod tests {
             CsrMatrix::from_triplets(2, &[(0, 0, 1.0), (1, 1, 1.0), (1, 0, 0.0)]).unwrap();
         assert_eq!(one_sided.max_asymmetry(), 0.0);
         assert!(!one_sided.is_symmetric());
+    }
+
+    /// A matrix built with sprs (CSC, row 1 without a diagonal entry)
+    /// becomes a [`CsrMatrix`] with the same product as sprs's own and an
+    /// explicit zero diagonal; `as_sprs` hands back the same matrix.
+    #[test]
+    fn sprs_matrices_in_and_out() {
+        let mut tri = sprs::TriMatI::<f64, u32>::new((3, 3));
+        for &(r, c, v) in &[
+            (0, 0, 4.0),
+            (0, 1, -1.0),
+            (1, 0, -2.0),
+            (1, 2, 3.0),
+            (2, 2, 5.0),
+        ] {
+            tri.add_triplet(r, c, v);
+        }
+        let a = CsrMatrix::try_from(tri.to_csc::<u32>()).unwrap();
+        assert_eq!(a.nnz(), 6);
+        assert_eq!(a.values()[a.diag_index()[1] as usize], 0.0);
+        let x = [1.0, -2.0, 0.5];
+        let mut y = [0.0; 3];
+        a.mul_vec(&x, &mut y);
+        assert_eq!(y, [6.0, -0.5, 2.5]);
+        let mut by_sprs = [0.0; 3];
+        sprs::prod::mul_acc_mat_vec_csr(a.as_sprs().view(), &x[..], &mut by_sprs[..]);
+        assert_eq!(by_sprs, y);
+        let wide = sprs::CsMatI::<f64, u32>::zero((2, 3));
+        assert!(matches!(
+            CsrMatrix::try_from(wide),
+            Err(LinearSolverError::DimensionMismatch {
+                expected: 2,
+                found: 3,
+                ..
+            })
+        ));
     }
 
     #[test]

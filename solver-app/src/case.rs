@@ -347,7 +347,7 @@ fn build(
                     }
                 }
             }
-            if spec.augmentation.is_some() && is_rigid(&spec.slave) {
+            if matches!(spec.augmentation, Some(Some(_))) && is_rigid(&spec.slave) {
                 // the multipliers live on the slave faces, where the
                 // algorithms resolve the pressure
                 return Err(node.table()?.req("augmentation")?.node().err(format!(

@@ -82,12 +82,18 @@ pub fn contact_report(contacts: &crate::contact_coupling::ContactSet) -> Vec<Str
         .iter()
         .enumerate()
         .map(|(i, c)| {
+            let augmentation = if c.augmentation_choice.value().is_some() {
+                "on"
+            } else {
+                "off"
+            };
             format!(
-                "contact[{i}] {} on {}: penalty_scale {} ({})",
+                "contact[{i}] {} on {}: penalty_scale {} ({}); augmentation {augmentation} ({})",
                 c.slave_name,
                 c.master_name,
                 c.penalty_scale.value(),
-                c.penalty_scale.reason()
+                c.penalty_scale.reason(),
+                c.augmentation_choice.reason()
             )
         })
         .collect()

@@ -21,10 +21,12 @@ use contact_force::{
 use fv_discretise::{LinearisedContact, PatchCondition};
 use fv_mesh::{CellToPoint, Surface, Vector};
 
+mod augmentation_choice;
 mod penalty_scale;
 mod restart;
 mod state_evaluation;
 
+pub use augmentation_choice::AugmentationChoice;
 pub use penalty_scale::PenaltyScale;
 
 /// Fraction of a face's previous linearisation contact fraction kept when
@@ -395,6 +397,8 @@ pub struct ContactInterface {
     pub slave: ContactSide,
     /// The normal penalty scale and why (given or chosen).
     pub penalty_scale: PenaltyScale,
+    /// Augmented Lagrangian updates or not, and why (given or chosen).
+    pub augmentation_choice: AugmentationChoice,
     detector: Box<dyn Detector + Send>,
     pairs: CandidatePairs,
     /// The last detection (Newton–Krylov: `pairs` is the union of the
@@ -517,8 +521,10 @@ impl ContactInterface {
     /// One Uzawa update of the augmented Lagrangian, λ ← p (the pressure
     /// λ + ε_n g⁻ of the last contact update), unless the largest true
     /// penetration is within `penetration` of the mean height of the slave
-    /// cells in contact, the increment has had its `max_updates`, or the
-    /// last update did not reduce the penetration ([`STALL_RATIO`]).
+    /// cells in contact (and, with `pressure`, ε_n times it within
+    /// `pressure` of the largest contact pressure), the increment has had
+    /// its `max_updates`, or the last update did not reduce the
+    /// penetration ([`STALL_RATIO`]).
     /// Returns whether λ changed (the outer loop must go on).
     fn augment(&mut self, bodies: &[Body]) -> bool {
         let Some(aug) = self.augmentation else {
@@ -543,7 +549,12 @@ impl ContactInterface {
                 k += 1;
             }
         }
-        if k == 0 || self.stats.max_penetration <= aug.penetration * h / k as f64 {
+        let within_height = self.stats.max_penetration <= aug.penetration * h / k as f64;
+        let within_pressure = aug.pressure.is_none_or(|share| {
+            let p_max = pressure.iter().fold(0.0f64, |m, &p| m.max(p));
+            self.law.normal_penalty * self.stats.max_penetration <= share * p_max
+        });
+        if k == 0 || (within_height && within_pressure) {
             return false;
         }
         if self.augmentation_updates > 0
@@ -931,6 +942,8 @@ impl ContactSet {
                 (&bodies[sb], sp),
                 stiff_ok,
             );
+            let augmentation_choice =
+                AugmentationChoice::choose(c.augmentation, (&bodies[mb], mp), (&bodies[sb], sp));
             let params = PenaltyParams {
                 penalty_scale: penalty_scale.value(),
                 tangential_penalty_scale: c.tangential_penalty_scale,
@@ -972,6 +985,7 @@ impl ContactSet {
                 master,
                 slave,
                 penalty_scale,
+                augmentation_choice,
                 detector,
                 pairs: CandidatePairs::new(),
                 detected: CandidatePairs::new(),
@@ -999,7 +1013,7 @@ impl ContactSet {
                 deformable_pair: !bodies[mb].rigid && !bodies[sb].rigid,
                 stiff: false,
                 coupled_components: false,
-                augmentation: c.augmentation,
+                augmentation: augmentation_choice.value(),
                 multiplier: Vec::new(),
                 multiplier_saved: Vec::new(),
                 augmentation_updates: 0,

@@ -58,6 +58,12 @@ pub struct Augmentation {
     /// Largest penetration accepted, relative to the mean height of the
     /// slave cells in contact (default 1e-3).
     pub penetration: f64,
+    /// Largest penalty share of the pressure accepted, ε_n times the
+    /// largest penetration relative to the largest contact pressure
+    /// (`None`, the default: not tested). Unlike `penetration` it does not
+    /// depend on the cell size, so it holds a small compression to its
+    /// elastic answer.
+    pub pressure: Option<f64>,
     /// Most multiplier updates per increment (default 20).
     pub max_updates: usize,
 }
@@ -66,6 +72,7 @@ impl Default for Augmentation {
     fn default() -> Self {
         Augmentation {
             penetration: 1e-3,
+            pressure: None,
             max_updates: 20,
         }
     }
@@ -119,6 +126,10 @@ fn augmentation(n: &Node<'_>) -> Res<Option<Augmentation>> {
         penetration: t.opt("penetration", d.penetration, |n| {
             n.f64_if(|x| x > 0.0 && x < 1.0, "satisfy 0 < penetration < 1")
         })?,
+        pressure: t.opt("pressure", d.pressure, |n| {
+            n.f64_if(|x| x > 0.0 && x < 1.0, "satisfy 0 < pressure < 1")
+                .map(Some)
+        })?,
         max_updates: t.opt("max_updates", d.max_updates, |n| n.usize_min(1))?,
     }))
 }
@@ -159,9 +170,11 @@ pub struct ContactSpec {
     pub slip_history: SlipHistory,
     /// `face_position`: where a contact face is when the gap is measured.
     pub face_position: FacePosition,
-    /// Augmented Lagrangian updates of the normal pressure (`None`: the
-    /// plain penalty, default).
-    pub augmentation: Option<Augmentation>,
+    /// Augmented Lagrangian updates of the normal pressure as the case
+    /// gives them: `Some(Some(_))` on, `Some(None)` off (`false`), `None`
+    /// not given: then
+    /// [`crate::contact_coupling::AugmentationChoice::choose`] chooses.
+    pub augmentation: Option<Option<Augmentation>>,
 }
 
 /// `friction`: μ >= 0, a number or a time table of numbers.
@@ -252,6 +265,6 @@ pub(crate) fn contact(node: &Node<'_>, bodies: &[&str]) -> Res<ContactSpec> {
         face_position: t.opt("face_position", FacePosition::Interpolated, |n| {
             n.choice("face_position", &FACE_POSITIONS)
         })?,
-        augmentation: t.opt("augmentation", None, augmentation)?,
+        augmentation: t.opt("augmentation", None, |n| augmentation(n).map(Some))?,
     })
 }

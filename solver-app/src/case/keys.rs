@@ -137,7 +137,7 @@ pub const CONTACT: &[&str] = &[
 pub const CONTACT_RELAXATION: &[&str] = &["normal", "tangential"];
 
 /// `[[contact]] augmentation = { ... }`.
-pub const AUGMENTATION: &[&str] = &["penetration", "max_updates"];
+pub const AUGMENTATION: &[&str] = &["penetration", "pressure", "max_updates"];
 
 /// `[output]`.
 pub const OUTPUT: &[&str] = &["directory", "every", "restart_every", "precision", "fields"];

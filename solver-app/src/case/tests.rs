@@ -1228,16 +1228,28 @@ fn augmentation_forms_and_the_rigid_slave_rule() {
     let c = parse(&two(
         "master = \"plate/ymin\"\nslave = \"block/ymax\"\naugmentation = true",
     ));
-    assert_eq!(c.contacts[0].augmentation, Some(Augmentation::default()));
+    assert_eq!(
+        c.contacts[0].augmentation,
+        Some(Some(Augmentation::default()))
+    );
     let c = parse(&two(
-        "master = \"plate/ymin\"\nslave = \"block/ymax\"\naugmentation = { penetration = 1e-4, max_updates = 5 }",
+        "master = \"plate/ymin\"\nslave = \"block/ymax\"\naugmentation = false",
+    ));
+    assert_eq!(c.contacts[0].augmentation, Some(None));
+    // a rigid slave with augmentation off is fine
+    parse(&two(
+        "master = \"block/ymax\"\nslave = \"plate/ymin\"\naugmentation = false",
+    ));
+    let c = parse(&two(
+        "master = \"plate/ymin\"\nslave = \"block/ymax\"\naugmentation = { penetration = 1e-4, pressure = 2e-3, max_updates = 5 }",
     ));
     assert_eq!(
         c.contacts[0].augmentation,
-        Some(Augmentation {
+        Some(Some(Augmentation {
             penetration: 1e-4,
+            pressure: Some(2e-3),
             max_updates: 5
-        })
+        }))
     );
     let x = fail(&two(
         "master = \"plate/ymin\"\nslave = \"block/ymax\"\naugmentation = { penetration = 2 }",

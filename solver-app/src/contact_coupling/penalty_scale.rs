@@ -30,7 +30,7 @@ use crate::model::Body;
 pub const RIGID_PLANE_PENALTY_SCALE: f64 = 5.0;
 
 /// Cosine within which two face normals count as parallel.
-const PARALLEL: f64 = 1.0 - 1e-9;
+pub(super) const PARALLEL: f64 = 1.0 - 1e-9;
 
 /// Why a contact's normal penalty scale is what it is.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -93,7 +93,7 @@ fn curved_on_rigid_plane(plane: (&Body, usize), other: (&Body, usize)) -> bool {
 
 /// Whether patch `patch` of `body` is flat (in its current geometry):
 /// every face normal parallel to the first's.
-fn is_flat(body: &Body, patch: usize) -> bool {
+pub(super) fn is_flat(body: &Body, patch: usize) -> bool {
     let Some(p) = body.mesh.patches.get(patch) else {
         return false;
     };
@@ -105,4 +105,12 @@ fn is_flat(body: &Body, patch: usize) -> bool {
         return false;
     };
     normals.all(|n| n.dot(&first) >= PARALLEL)
+}
+
+/// The unit normal of the patch's first face of nonzero area.
+pub(super) fn face_normal_of(body: &Body, patch: usize) -> Option<fv_mesh::Vector> {
+    let p = body.mesh.patches.get(patch)?;
+    p.faces()
+        .find(|&f| body.geom.face_mag(f) > 0.0)
+        .map(|f| body.geom.face_normal(f))
 }

@@ -1455,10 +1455,11 @@ value = [1, 0, 0]
     assert!(err.contains("is not held in the"), "{err}");
 }
 
-/// `check` prints each contact's normal penalty scale and why: 5 for the
-/// example's curved cylinder on its rigid flat (not given), 1 for a flat
-/// block face under a rigid plate (a conforming contact, not given), and
-/// the case's own value when given.
+/// `check` prints each contact's normal penalty scale and augmentation
+/// and why: 5 and no augmentation for the example's curved cylinder on its
+/// rigid flat (not given), 1 for a block face across a rigid plate's
+/// (not given), augmentation for the block's top under the plate, and the
+/// case's own values when given.
 #[test]
 fn check_reports_the_penalty_scale_of_each_contact_and_why() {
     let example =
@@ -1466,7 +1467,7 @@ fn check_reports_the_penalty_scale_of_each_contact_and_why() {
     let (code, out, err) = fvc(&["check", example.to_str().unwrap()]);
     assert_eq!(code, 0, "{out}{err}");
     assert!(
-        out.contains("contact[0] cylinder/contact on flat/ymax: penalty_scale 5 (not given; a curved surface on a rigid plane)"),
+        out.contains("contact[0] cylinder/contact on flat/ymax: penalty_scale 5 (not given; a curved surface on a rigid plane); augmentation off (not given; the plain penalty)"),
         "{out}"
     );
     let dir = tempfile::tempdir().unwrap();
@@ -1481,9 +1482,31 @@ fn check_reports_the_penalty_scale_of_each_contact_and_why() {
         ),
         "{out}"
     );
-    let given = plate + "penalty_scale = 2.5\n";
+    let given = plate + "penalty_scale = 2.5\naugmentation = true\n";
     let p = write(dir.path(), "case.toml", given.as_bytes());
     let (code, out, err) = fvc(&["check", p.to_str().unwrap()]);
     assert_eq!(code, 0, "{out}{err}");
-    assert!(out.contains("penalty_scale 2.5 (given)"), "{out}");
+    assert!(
+        out.contains("penalty_scale 2.5 (given); augmentation on (given)"),
+        "{out}"
+    );
+    // the block's top free for the contact
+    let free_top = GOOD.replace(
+        "[body.boundary.ymax]\ntype = \"displacement\"\nvalue = { table = [[0.0, [0, 0, 0]], [1.0, [0, -0.01, 0]]] }\n",
+        "",
+    );
+    assert_ne!(free_top, GOOD);
+    let on_top = |plate: &str| {
+        let case = format!("{free_top}{plate}")
+            + "[[contact]]\nmaster = \"plate/ymin\"\nslave = \"block/ymax\"\n";
+        let p = write(dir.path(), "case.toml", case.as_bytes());
+        let (code, out, err) = fvc(&["check", p.to_str().unwrap()]);
+        assert_eq!(code, 0, "{out}{err}");
+        out
+    };
+    let out = on_top(RIGID_PLATE);
+    assert!(
+        out.contains("augmentation on (not given; a flat face on a rigid plane"),
+        "{out}"
+    );
 }

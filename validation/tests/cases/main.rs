@@ -5,6 +5,7 @@
 
 mod axisymmetric_bar;
 mod block_in_half_tube;
+mod block_on_rigid_plane;
 mod cantilever;
 mod concentric_cylinders;
 mod concentric_spheres;

@@ -1506,7 +1506,7 @@ fn check_reports_the_penalty_scale_of_each_contact_and_why() {
     };
     let out = on_top(RIGID_PLATE);
     assert!(
-        out.contains("augmentation on (not given; a flat face on a rigid plane"),
+        out.contains("augmentation on (not given; two flat faces"),
         "{out}"
     );
 }

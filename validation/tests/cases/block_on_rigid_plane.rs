@@ -1,7 +1,7 @@
 //! A block pressed onto a rigid plane, as a user writes it first: no
 //! `penalty_scale`, no `augmentation`. Its bottom is a flat face on a
 //! rigid plane, so the contact gets augmented Lagrangian updates by
-//! default (`AugmentationChoice::FaceOnRigidPlane`) and carries what
+//! default (`AugmentationChoice::FlatFaces`) and carries what
 //! elasticity says, not that less the penalty's penetration: uniaxial
 //! stress σ = E ε (the top `normal-displacement`, free to slide;
 //! frictionless plane), and Coulomb's μ N once the top is pulled sideways.

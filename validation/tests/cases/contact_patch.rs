@@ -1,6 +1,7 @@
 //! Contact patch test: two stacked blocks with non-matching meshes under a
 //! uniform compression carry a uniform contact pressure (thesis ch. 6) whose
-//! value follows from the block and penalty compliances in series.
+//! value follows from the blocks' compliances in series (the thesis adds
+//! the penalty's; the flat faces are augmented by default here).
 //!
 //! Run with the settings a user tries first (`penalty_scale = 1`, default
 //! relaxation), with explicit and with implicit coupling.
@@ -80,29 +81,30 @@ fn uniform_pressure_with_non_matching_meshes_either_side_master() {
             let dev = p.iter().fold(0.0f64, |a, x| a.max((x - mean).abs())) / mean;
             assert!(dev < 1e-6, "pressure not uniform: {p:?}");
         }
-        // series compliance: u = p (2/K) + p/ε_n, with K = λ + 2μ (uniaxial
-        // strain) and ε_n = 0.1 K Γ̄/Ω̄ over the faces of both surfaces
+        // uniaxial strain of the two blocks in series: u = p (2/K), with
+        // K = λ + 2μ; the flat faces get the augmented Lagrangian by
+        // default (AugmentationChoice::FlatFaces), so no penalty compliance
+        // p/ε_n is added (it was −8.4 % of p). Measured −5e-5 with every
+        // coupling; the updates stop at a penalty share of 1e-3.
         let (e, nu): (f64, f64) = (1000.0, 0.3);
         let k = e * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu));
-        let (area, volume) = ((0.1 + 0.1) / 11.0, (0.1 / 6.0 + 0.1 / 5.0) / 11.0);
-        let eps = k * area / volume;
-        let p_exact = 0.01 / (2.0 / k + 1.0 / eps);
+        let p_exact = 0.01 / (2.0 / k);
         let p = c.tractions.slave.pressure[0];
         eprintln!(
             "{master} / {slave} {coupling}: p = {p:.8}, exact {p_exact:.8}, {} outer iterations",
             out.summary.outer_iterations
         );
-        assert!((p - p_exact).abs() < 1e-6 * p_exact);
+        assert!(
+            (p - p_exact).abs() < 1e-3 * p_exact,
+            "{p} against {p_exact}"
+        );
         // action = reaction
         let lower = &out.bodies[0];
         let fl = lower
             .momentum
             .patch_force(&lower.mesh, lower.mesh.patch_index("ymin").unwrap());
         forces.push(c.stats.normal_force);
-        assert!(
-            (fl.y - p_exact * 0.1).abs() < 1e-6 * p_exact * 0.1,
-            "{fl:?}"
-        );
+        assert!((fl.y - p * 0.1).abs() < 1e-6 * p * 0.1, "{fl:?}");
     }
     for f in &forces[1..] {
         assert!((forces[0] - f).abs() < 1e-8 * forces[0]);
@@ -210,7 +212,7 @@ value = [0, 0, 0]
     assert!((fa / fb - 2.5).abs() < 1e-6, "{}", fa / fb);
     // and each is its block's uniaxial strain (symmetry sides, one cell in
     // z): M ε A with M = E(1 − ν)/((1 + ν)(1 − 2ν)), the face on the rigid
-    // floor augmented by default (AugmentationChoice::FaceOnRigidPlane).
+    // floor augmented by default (AugmentationChoice::FlatFaces).
     // Measured: −0.013 % both; with the plain penalty −16.7 % both.
     let m = 1000.0 * 0.7 / (1.3 * 0.4);
     for (f, squeeze) in [(fa, 0.01), (fb, 0.004)] {

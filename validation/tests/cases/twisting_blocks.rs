@@ -32,10 +32,15 @@ fn vertical_reaction_does_not_depend_on_the_master() {
     }
     assert!(worst < 0.01, "master/slave difference {worst}");
     // push 0.01 on two unit cubes of E = 1000: F = E·0.005 = 5 for free
-    // lateral faces; the penalty's penetration takes about 1.5 % of it
-    assert!((f0 / 5.0 - 1.0).abs() < 0.03, "F_z(0) = {f0}");
+    // lateral faces, a little more with the ends held (the top's rigid
+    // motion, the fixed bottom). The flat faces are augmented by default
+    // (AugmentationChoice::FlatFaces): measured 5.140; with the plain
+    // penalty 4.928, its penetration taking 4 %.
+    assert!((f0 / 5.0 - 1.0).abs() < 0.04, "F_z(0) = {f0}");
     // the contact area shrinks to the octagon at 45° and back at 90°, the
-    // load with it (less than the area: the overhanging corners still bear)
+    // load with it (less than the area: the overhanging corners still bear).
+    // Measured F_z(45°)/F_z(0) = 0.961 (plain penalty 0.958: a penalty
+    // layer loses stiffness with the area, so it deepens the dip)
     let at = |deg: f64| {
         a.reaction
             .iter()
@@ -43,7 +48,7 @@ fn vertical_reaction_does_not_depend_on_the_master() {
             .map_or(f64::NAN, |r| r.1)
     };
     assert!(
-        at(45.0) < 0.96 * f0 && at(45.0) > 0.828 * f0,
+        at(45.0) < 0.97 * f0 && at(45.0) > 0.828 * f0,
         "{}",
         at(45.0)
     );

@@ -22,11 +22,13 @@ use fv_discretise::{LinearisedContact, PatchCondition};
 use fv_mesh::{CellToPoint, Surface, Vector};
 
 mod augmentation_choice;
+mod frictionless_support;
 mod penalty_scale;
 mod restart;
 mod state_evaluation;
 
 pub use augmentation_choice::AugmentationChoice;
+pub use frictionless_support::frictionless_slide;
 pub use penalty_scale::PenaltyScale;
 
 /// Fraction of a face's previous linearisation contact fraction kept when
@@ -481,6 +483,14 @@ pub struct ContactInterface {
 }
 
 impl ContactInterface {
+    /// Whether μ is zero at every time.
+    pub fn frictionless(&self) -> bool {
+        match &self.friction {
+            ScalarValue::Constant(mu) => *mu == 0.0,
+            ScalarValue::Table(rows) => rows.iter().all(|&(_, mu)| mu == 0.0),
+        }
+    }
+
     /// The gaps the algorithm measured with the slave faces moved on by
     /// λ/ε_n ([`ContactSet::update`]) back to the faces' own: the output
     /// and the augmentation's test see the true penetration.

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use crate::case::{Case, Coupling, InputError, OnNonConvergence};
-use crate::contact_coupling::ContactSet;
+use crate::contact_coupling::{frictionless_slide, ContactSet};
 use crate::field_output::FieldOutput;
 use crate::interrupt::{signal_name, Interrupt};
 use crate::mesh_loading::load_mesh;
@@ -192,9 +192,21 @@ fn run_case_noting(
     // every body held (Newton–Krylov: contact holds whatever it touches,
     // whatever the coupling)
     let held = match method {
-        NonlinearMethod::Segregated => Ok(()),
+        // its own set-up checks (and may couple explicit contacts
+        // implicitly first); the frictionless check needs implicit contacts
+        NonlinearMethod::Segregated => {
+            Ok(SegregatedSolver::check_held(&bodies, &case.solver).unwrap_or_default())
+        }
         NonlinearMethod::NewtonKrylov => SegregatedSolver::check_held(&bodies, &case.solver),
     };
+    if let Some(e) = held
+        .as_ref()
+        .ok()
+        .and_then(|floating| frictionless_slide(case, &bodies, &contacts, floating))
+    {
+        return Err(RunError::Input(e));
+    }
+    let held = held.map(|_| ());
     let mut solver = nonlinear_solver::build(&bodies, &contacts, &case.solver);
     // `--restart`: the state of the increment continued from, before the
     // method sets up on the meshes
@@ -1026,7 +1038,11 @@ pub fn check_support(
     contacts.prepare_conditions(&mut bodies);
     let mut solver = SegregatedSolver::new(&bodies, &case.solver);
     let Err(e) = solver.assemble_and_factorise(&bodies, &case.solver.linear) else {
-        return Ok(None);
+        let floating = solver.held_by_contact_alone();
+        return match frictionless_slide(case, &bodies, &contacts, floating) {
+            Some(e) => Err(e),
+            None => Ok(None),
+        };
     };
     match unheld_body(case, &e, true) {
         Some(Ok((note, switched))) => {

@@ -608,14 +608,26 @@ impl SegregatedSolver {
     /// `settings` assemble and factorise (the check Newton–Krylov runs
     /// before it starts). The solver built for it has no acceleration or
     /// predictor workspace, which it never uses: Anderson's history alone
-    /// is 2 kB per cell at depth 10.
-    pub fn check_held(bodies: &[Body], settings: &SolverSettings) -> Result<(), SolveError> {
+    /// is 2 kB per cell at depth 10. Returns the directions in which only
+    /// contact holds a body, `(body, axis)`.
+    pub fn check_held(
+        bodies: &[Body],
+        settings: &SolverSettings,
+    ) -> Result<Vec<(usize, usize)>, SolveError> {
         let settings = SolverSettings {
             acceleration: Acceleration::None,
             predictor: Predictor::None,
             ..*settings
         };
-        SegregatedSolver::new(bodies, &settings).assemble_and_factorise(bodies, &settings.linear)
+        let mut solver = SegregatedSolver::new(bodies, &settings);
+        solver.assemble_and_factorise(bodies, &settings.linear)?;
+        Ok(solver.held_by_contact_alone().to_vec())
+    }
+
+    /// The directions in which only contact holds a body, `(body, axis)`,
+    /// as the last assembly found.
+    pub fn held_by_contact_alone(&self) -> &[(usize, usize)] {
+        &self.floating
     }
 
     /// Sets the change of the prescribed values over the step the next

@@ -1510,3 +1510,61 @@ fn check_reports_the_penalty_scale_of_each_contact_and_why() {
         "{out}"
     );
 }
+
+/// A block that only a frictionless floor holds sideways is not held
+/// there: `check` and `run` stop with exit 2 naming the body, the
+/// direction and the contact; symmetry planes or friction make it valid.
+#[test]
+fn frictionless_floor_alone_does_not_hold_a_block_sideways() {
+    let case = |extra_block: &str, contact: &str| {
+        format!(
+            r#"title = "block-on-floor"
+[time]
+end = 1.0
+steps = 1
+[[body]]
+name = "block"
+mesh = {{ generator = "box", min = [0, 0, 0], max = [1, 1, 0.5], cells = [4, 4, 2] }}
+material = {{ model = "linear-elastic", E = 1000.0, nu = 0.3 }}
+[body.boundary.zmax]
+type = "normal-displacement"
+value = -0.01
+{extra_block}[[body]]
+name = "floor"
+rigid = true
+mesh = {{ generator = "box", min = [-1, -1, -0.2], max = [2, 2, 0], cells = [1, 1, 1] }}
+material = {{ model = "linear-elastic", E = 1000.0, nu = 0.3 }}
+[body.boundary.zmin]
+type = "displacement"
+value = [0, 0, 0]
+[[contact]]
+master = "floor/zmax"
+slave = "block/zmin"
+{contact}"#
+        )
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let p = write(dir.path(), "case.toml", case("", "").as_bytes());
+    let out_dir = dir.path().join("results");
+    let (path, out_dir) = (p.to_str().unwrap(), out_dir.to_str().unwrap());
+    for (cmd, args) in [
+        ("check", vec!["check", path]),
+        ("run", vec!["run", path, "--quiet", "--output", out_dir]),
+    ] {
+        let (code, out, err) = fvc(&args);
+        assert_eq!(code, 2, "{cmd}: {out}{err}");
+        assert!(
+            err.contains("body 'block' is not held in the x direction: frictionless contact on flat faces along it (contact[0] block/zmin on floor/zmax)"),
+            "{cmd}: {err}"
+        );
+        assert!(err.contains("case.toml:"), "{err}");
+    }
+    for (extra, contact) in [
+        ("[body.boundary.xmin]\ntype = \"symmetry\"\n[body.boundary.ymin]\ntype = \"symmetry\"\n", ""),
+        ("", "friction = 0.2\n"),
+    ] {
+        let p = write(dir.path(), "case.toml", case(extra, contact).as_bytes());
+        let (code, out, err) = fvc(&["check", p.to_str().unwrap()]);
+        assert_eq!(code, 0, "{out}{err}");
+    }
+}

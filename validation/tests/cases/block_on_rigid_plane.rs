@@ -39,14 +39,17 @@ slave = "block/zmin"
     )
 }
 
-/// Top pushed down 0.01 (ε = 0.02), free to slide: uniaxial stress, so
-/// the plane carries E ε A = 20 with a uniform pressure of 20. Measured:
+/// Top pushed down 0.01 (ε = 0.02), free to slide, the sides x = 0 and
+/// y = 0 symmetry planes (a frictionless floor holds nothing sideways):
+/// uniaxial stress, so the plane carries E ε A = 20 with a uniform
+/// pressure of 20. Measured:
 /// 19.997 (−0.015 %), the pressure uniform to 9e-6; with
 /// `augmentation = false` 16.87 (−15.7 %: the penalty's penetration,
 /// 1.6e-3, is 16 % of the 0.01).
 #[test]
 fn pressed_block_carries_e_eps_a_with_the_defaults() {
-    let top = "type = \"normal-displacement\"\nvalue = { table = [[0.0, -0.005], [1.0, -0.01]] }";
+    let top = "type = \"normal-displacement\"\nvalue = { table = [[0.0, -0.005], [1.0, -0.01]] }\n\
+               [body.boundary.xmin]\ntype = \"symmetry\"\n[body.boundary.ymin]\ntype = \"symmetry\"";
     let exact = 1000.0 * 0.02 * 1.0;
     let out = run_toml(&case(top, "", 2), std::path::Path::new("."));
     assert!(out.converged, "{:?}", out.failure);

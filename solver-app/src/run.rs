@@ -206,6 +206,10 @@ fn run_case_noting(
     {
         return Err(RunError::Input(e));
     }
+    let loaded_by_contact_alone = match (&held, method) {
+        (Ok(floating), NonlinearMethod::NewtonKrylov) => loaded_floating_bodies(&bodies, floating),
+        _ => Vec::new(),
+    };
     let held = held.map(|_| ());
     let mut solver = nonlinear_solver::build(&bodies, &contacts, &case.solver);
     // `--restart`: the state of the increment continued from, before the
@@ -721,11 +725,16 @@ fn run_case_noting(
                     } else {
                         String::new()
                     };
-                    let msg = format!(
+                    let mut msg = format!(
                         "increment {k} did not converge in {}{attempts} ({})",
                         count(info.outer_iterations, "outer iteration", "outer iterations"),
                         info.shortfall(case.solver.tolerance)
                     );
+                    if let Some(name) = loaded_by_contact_alone.first() {
+                        msg.push_str(&format!(
+                            "; body '{name}' is held by contact alone and loaded by a traction or pressure, which Newton–Krylov cannot bring into contact while the contact is open: give the load as type = \"force\" (a total force, reached by displacement), or solve with nonlinear = \"segregated\""
+                        ));
+                    }
                     match case.solver.on_nonconvergence {
                         OnNonConvergence::Abort => {
                             failure = Some(msg);
@@ -1057,6 +1066,29 @@ pub fn check_support(
         Some(Err(input)) => Err(input),
         None => Ok(None),
     }
+}
+
+/// The deformable bodies that only contact holds in some direction
+/// (`floating`, from [`SegregatedSolver::check_held`]) and that a traction
+/// or pressure loads: Newton–Krylov does not bring such a body into
+/// contact from an open start (docs/newton-krylov.md, "Known limits"), so
+/// a failure names them with what runs instead.
+fn loaded_floating_bodies(bodies: &[Body], floating: &[(usize, usize)]) -> Vec<String> {
+    let mut names: Vec<String> = Vec::new();
+    for &(bi, _) in floating {
+        let b = &bodies[bi];
+        let loaded = b.patch_specs.iter().flatten().any(|s| {
+            matches!(
+                s,
+                crate::case::BoundarySpec::Traction { .. }
+                    | crate::case::BoundarySpec::Pressure { .. }
+            )
+        });
+        if loaded && !names.contains(&b.name) {
+            names.push(b.name.clone());
+        }
+    }
+    names
 }
 
 /// The explicitly coupled contacts a body is in.

@@ -1568,3 +1568,71 @@ slave = "block/zmin"
         assert_eq!(code, 0, "{out}{err}");
     }
 }
+
+/// A block that only contact holds, 1e-4 above a rigid floor and pressed
+/// by a pressure: Newton–Krylov cannot bring the open contact shut
+/// (docs/newton-krylov.md, "Known limits"), and its failure says what runs
+/// instead; both of those carry the load, p A = 1, into the floor.
+#[test]
+fn pressure_on_a_body_that_contact_alone_holds_names_what_runs() {
+    let case = |load: &str| {
+        format!(
+            r#"title = "float"
+[time]
+end = 1.0
+steps = 1
+[[body]]
+name = "block"
+mesh = {{ generator = "box", min = [0, 0, 0.0001], max = [1, 1, 0.5001], cells = [4, 4, 2] }}
+material = {{ model = "linear-elastic", E = 1000.0, nu = 0.3 }}
+[body.boundary.zmax]
+{load}
+[body.boundary.xmin]
+type = "symmetry"
+[body.boundary.ymin]
+type = "symmetry"
+[[body]]
+name = "floor"
+rigid = true
+mesh = {{ generator = "box", min = [-1, -1, -0.2], max = [2, 2, 0], cells = [1, 1, 1] }}
+material = {{ model = "linear-elastic", E = 1000.0, nu = 0.3 }}
+[body.boundary.zmin]
+type = "displacement"
+value = [0, 0, 0]
+[[contact]]
+master = "floor/zmax"
+slave = "block/zmin"
+"#
+        )
+    };
+    let pressure = case("type = \"pressure\"\nvalue = 1.0");
+    let dir = tempfile::tempdir().unwrap();
+    let (code, _, err) = run_quietly(dir.path(), pressure.as_bytes());
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("body 'block' is held by contact alone and loaded by a traction or pressure")
+            && err.contains("type = \"force\"")
+            && err.contains("nonlinear = \"segregated\""),
+        "{err}"
+    );
+    let normal_force = |res: &Path| {
+        let (text, v) = read_summary(res);
+        let f = v["contacts"][0]["normal_force"].as_f64();
+        (f, text)
+    };
+    // the segregated method: 1 (1,063 outer iterations)
+    let segregated = pressure.replace(
+        "steps = 1\n",
+        "steps = 1\n[solver]\nnonlinear = \"segregated\"\n",
+    );
+    let (code, out, err) = run_quietly(dir.path(), segregated.as_bytes());
+    assert_eq!(code, 0, "{err}");
+    let (f, text) = normal_force(&out.join("float"));
+    assert!(f.is_some_and(|f| (f - 1.0).abs() < 1e-3), "{text}");
+    // the same load as a total force: 1.00005 (55 Newton iterations)
+    let force = case("type = \"force\"\nvalue = [0, 0, -1.0]");
+    let (code, out, err) = run_quietly(dir.path(), force.as_bytes());
+    assert_eq!(code, 0, "{err}");
+    let (f, text) = normal_force(&out.join("float"));
+    assert!(f.is_some_and(|f| (f - 1.0).abs() < 1e-3), "{text}");
+}

@@ -208,13 +208,15 @@ impl NewtonKrylovSolver {
     /// contact face is [`CLOSING_PENETRATION`] of a cell deep, where the
     /// contact holds it (docs/newton-krylov.md, "Known limits"). Only when
     /// the body's conditions allow that translation (symmetry planes
-    /// along it, no kinematic condition). True when a body was moved.
+    /// along it, no kinematic condition) and the analysis is static (no
+    /// inertia). True when a body was moved.
     fn contact_closing_translations(&mut self, bodies: &[Body], contacts: &ContactSet) -> bool {
         use crate::case::BoundarySpec as B;
         let t1 = self.step_times.1;
         let mut moved = false;
         for (bi, b) in bodies.iter().enumerate() {
-            if b.rigid || !contacts.involves(bi) {
+            // inertia holds a dynamic body: it must not jump into contact
+            if b.rigid || b.momentum.inertia.is_some() || !contacts.involves(bi) {
                 continue;
             }
             let mut load = fv_mesh::Vector::zeros();

@@ -1517,30 +1517,11 @@ fn check_reports_the_penalty_scale_of_each_contact_and_why() {
 #[test]
 fn frictionless_floor_alone_does_not_hold_a_block_sideways() {
     let case = |extra_block: &str, contact: &str| {
-        format!(
-            r#"title = "block-on-floor"
-[time]
-end = 1.0
-steps = 1
-[[body]]
-name = "block"
-mesh = {{ generator = "box", min = [0, 0, 0], max = [1, 1, 0.5], cells = [4, 4, 2] }}
-material = {{ model = "linear-elastic", E = 1000.0, nu = 0.3 }}
-[body.boundary.zmax]
-type = "normal-displacement"
-value = -0.01
-{extra_block}[[body]]
-name = "floor"
-rigid = true
-mesh = {{ generator = "box", min = [-1, -1, -0.2], max = [2, 2, 0], cells = [1, 1, 1] }}
-material = {{ model = "linear-elastic", E = 1000.0, nu = 0.3 }}
-[body.boundary.zmin]
-type = "displacement"
-value = [0, 0, 0]
-[[contact]]
-master = "floor/zmax"
-slave = "block/zmin"
-{contact}"#
+        block_on_floor(
+            "block-on-floor",
+            ("0", "0.5"),
+            &format!("[body.boundary.zmax]\ntype = \"normal-displacement\"\nvalue = -0.01\n{extra_block}"),
+            contact,
         )
     };
     let dir = tempfile::tempdir().unwrap();
@@ -1577,33 +1558,14 @@ slave = "block/zmin"
 #[test]
 fn pressure_on_a_body_that_contact_alone_holds_reaches_the_floor() {
     let case = |load: &str| {
-        format!(
-            r#"title = "float"
-[time]
-end = 1.0
-steps = 1
-[[body]]
-name = "block"
-mesh = {{ generator = "box", min = [0, 0, 0.0001], max = [1, 1, 0.5001], cells = [4, 4, 2] }}
-material = {{ model = "linear-elastic", E = 1000.0, nu = 0.3 }}
-[body.boundary.zmax]
-{load}
-[body.boundary.xmin]
-type = "symmetry"
-[body.boundary.ymin]
-type = "symmetry"
-[[body]]
-name = "floor"
-rigid = true
-mesh = {{ generator = "box", min = [-1, -1, -0.2], max = [2, 2, 0], cells = [1, 1, 1] }}
-material = {{ model = "linear-elastic", E = 1000.0, nu = 0.3 }}
-[body.boundary.zmin]
-type = "displacement"
-value = [0, 0, 0]
-[[contact]]
-master = "floor/zmax"
-slave = "block/zmin"
-"#
+        block_on_floor(
+            "float",
+            ("0.0001", "0.5001"),
+            &format!(
+                "[body.boundary.zmax]\n{load}\n[body.boundary.xmin]\ntype = \"symmetry\"\n\
+                 [body.boundary.ymin]\ntype = \"symmetry\"\n"
+            ),
+            "",
         )
     };
     let pressure = case("type = \"pressure\"\nvalue = 1.0");
@@ -1631,4 +1593,34 @@ slave = "block/zmin"
         let its = v["outer_iterations"].as_f64();
         assert!(its.is_some_and(|n| n <= most), "{label}: {summary}");
     }
+}
+
+/// A 1 × 1 × 0.5 block of 4 × 4 × 2 cells between heights `z` (E = 1000,
+/// ν = 0.3) with the condition tables `block`, over a rigid floor at
+/// z = 0, the block's bottom the slave of one contact with the `contact`
+/// keys.
+fn block_on_floor(title: &str, z: (&str, &str), block: &str, contact: &str) -> String {
+    let (z0, z1) = z;
+    format!(
+        r#"title = "{title}"
+[time]
+end = 1.0
+steps = 1
+[[body]]
+name = "block"
+mesh = {{ generator = "box", min = [0, 0, {z0}], max = [1, 1, {z1}], cells = [4, 4, 2] }}
+material = {{ model = "linear-elastic", E = 1000.0, nu = 0.3 }}
+{block}[[body]]
+name = "floor"
+rigid = true
+mesh = {{ generator = "box", min = [-1, -1, -0.2], max = [2, 2, 0], cells = [1, 1, 1] }}
+material = {{ model = "linear-elastic", E = 1000.0, nu = 0.3 }}
+[body.boundary.zmin]
+type = "displacement"
+value = [0, 0, 0]
+[[contact]]
+master = "floor/zmax"
+slave = "block/zmin"
+{contact}"#
+    )
 }

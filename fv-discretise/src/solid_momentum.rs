@@ -652,6 +652,9 @@ impl SolidMomentum {
             // the gradient of the restored fields
             self.gradient
                 .vector_gradient(mesh, geom, &self.u, &self.u_b, &mut self.grad_u);
+            // and the stress of the restored fields: a run that fails here
+            // writes them as its last state
+            self.update_stress();
         }
         if self.law.is_updated_lagrangian() {
             for ((d, u), o) in self.du.iter_mut().zip(&self.u).zip(&self.u_old) {

@@ -53,6 +53,18 @@ pub trait NonlinearSolver {
         on_iteration: &mut dyn FnMut(usize, f64) -> ControlFlow<()>,
     ) -> Result<IncrementInfo, SolveError>;
 
+    /// After a failed attempt was undone (`Body::restore_start`,
+    /// `ContactSet::restore_start`): the fields that follow from the
+    /// restored displacements — boundary values, gradients, stresses, the
+    /// forces through the faces (the reactions), the contact surfaces and
+    /// tractions — which the failed attempt left as its own. A failed run
+    /// calls it before it writes the restored state as its last.
+    fn refresh_restored(
+        &mut self,
+        bodies: &mut [Body],
+        contacts: &mut ContactSet,
+    ) -> Result<(), String>;
+
     /// Cells of all deformable bodies.
     fn n_unknowns(&self) -> usize;
 
@@ -147,6 +159,16 @@ impl NonlinearSolver for SegregatedSolver {
         on_iteration: &mut dyn FnMut(usize, f64) -> ControlFlow<()>,
     ) -> Result<IncrementInfo, SolveError> {
         SegregatedSolver::solve_increment(self, bodies, contacts, on_iteration)
+    }
+
+    fn refresh_restored(
+        &mut self,
+        bodies: &mut [Body],
+        contacts: &mut ContactSet,
+    ) -> Result<(), String> {
+        contacts.evaluate_state(bodies, fv_nonlinear::Frozen::Renew)?;
+        self.update_fields(bodies).map_err(|e| e.to_string())?;
+        Ok(())
     }
 
     fn n_unknowns(&self) -> usize {

@@ -553,16 +553,13 @@ fn run_case_noting(
                     total.outer_iterations += info.outer_iterations;
                     total.linear_iterations += info.linear_iterations;
                     total.residual_evaluations += info.residual_evaluations;
-                    total.residual = info.residual;
-                    total.required = info.required;
-                    total.contact_unsettled = info.contact_unsettled;
-                    total.converged &= info.converged;
                     let go_on = info.converged
                         || case.solver.on_nonconvergence == OnNonConvergence::Continue;
                     if !go_on && t0 > t_prev {
                         // under `abort`, after converged sub-steps: back to
                         // the last of them, which the results report (as
-                        // after an error), not the unconverged iterate
+                        // after an error) with its residual, not the
+                        // unconverged iterate
                         restore_start(&mut bodies, &mut contacts);
                         break Err(SolveError::Nonlinear(format!(
                             "sub-step t = {t0:.6e} → {t1:.6e} did not converge in {} outer iterations ({})",
@@ -570,6 +567,10 @@ fn run_case_noting(
                             info.shortfall(case.solver.tolerance)
                         )));
                     }
+                    total.residual = info.residual;
+                    total.required = info.required;
+                    total.contact_unsettled = info.contact_unsettled;
+                    total.converged &= info.converged;
                     if t1 == t || !go_on {
                         // the fields are those of t1: an unconverged step
                         // under `abort` is reported at its own time
@@ -773,7 +774,15 @@ fn run_case_noting(
                 let mut msg = format!("increment {k}: {e}");
                 if t0 > increment_start {
                     // converged sub-steps of the failed increment: the last
-                    // is written as increment k at its own time
+                    // is written as increment k at its own time, with its
+                    // contact surfaces and tractions (the failed attempt
+                    // left its own behind)
+                    if let Err(e) = solver.refresh_restored(&mut bodies, &mut contacts) {
+                        log.warn(&format!(
+                            "increment {k}: the contact state of t = {} could not be evaluated for the results: {e}",
+                            Num(t0)
+                        ));
+                    }
                     record_increment(
                         &mut history,
                         &mut fields,

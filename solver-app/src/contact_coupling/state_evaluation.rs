@@ -184,6 +184,10 @@ impl ContactSet {
                 if frozen == Frozen::Renew {
                     changes += count_changes(side, contact);
                 }
+                // the traction each side receives: the state's own (the
+                // segregated method's relaxed one has no place here); the
+                // results' `contact_traction` is written from it
+                contact.tractions_into(&mut side.applied);
                 let b = &mut bodies[side.body];
                 if b.rigid {
                     continue;

@@ -27,7 +27,8 @@ use crate::profile::PhaseTimes;
 use crate::segregated::{unsolved_directions, IncrementInfo, SolveError};
 use fv_discretise::MomentumParams;
 use fv_nonlinear::{
-    GmresParams, IterationReport, NewtonError, NewtonInfo, NewtonKrylov, NewtonParams,
+    Frozen, GmresParams, IterationReport, NewtonError, NewtonInfo, NewtonKrylov, NewtonParams,
+    NonlinearProblem,
 };
 use jacobian::{AssembledJacobian, LU_LIMIT, LU_LIMIT_3D};
 use layout::StateLayout;
@@ -592,6 +593,20 @@ impl crate::nonlinear_solver::NonlinearSolver for NewtonKrylovSolver {
             }
         }
         Ok(info)
+    }
+
+    fn refresh_restored(
+        &mut self,
+        bodies: &mut [Body],
+        contacts: &mut ContactSet,
+    ) -> Result<(), String> {
+        // the residual at the restored start (x = 0) sets every field of it
+        self.begin_increment(bodies);
+        let n = self.state_len();
+        let (x, mut f) = (vec![0.0; n], vec![0.0; n]);
+        self.problem(bodies, contacts)
+            .residual(&x, &mut f, Frozen::Renew)
+            .map_err(|e| e.0)
     }
 
     fn n_unknowns(&self) -> usize {

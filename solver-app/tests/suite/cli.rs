@@ -1624,3 +1624,106 @@ slave = "block/zmin"
 {contact}"#
     )
 }
+
+/// A plane-strain block pressed onto a rigid floor (μ = 0.3), then pushed
+/// sideways by a traction that passes μN at t ≈ 1.69: no equilibrium
+/// exists beyond, and the run fails after converged sub-steps of its
+/// second increment.
+const BLOCK_PUSHED_PAST_FRICTION: &str = r#"title = "pushed"
+[time]
+end = 2.0
+steps = 2
+[[body]]
+name = "block"
+mesh = { generator = "box", min = [0.0, 0.0, 0.0], max = [1.0, 0.5, 0.1], cells = [10, 5, 1] }
+material = { model = "linear-elastic", E = 1e9, nu = 0.3 }
+[body.boundary.ymax]
+type = "normal-displacement"
+value = { table = [[0.0, 0.0], [1.0, -1e-3]] }
+[body.boundary.xmin]
+type = "traction"
+value = { table = [[0.0, [0.0, 0.0, 0.0]], [1.0, [0.0, 0.0, 0.0]], [2.0, [2.066e6, 0.0, 0.0]]] }
+[body.boundary.zmin]
+type = "empty"
+[body.boundary.zmax]
+type = "empty"
+[[body]]
+name = "floor"
+rigid = true
+mesh = { generator = "box", min = [-1.0, -0.2, 0.0], max = [2.0, 0.0, 0.1], cells = [3, 1, 1] }
+[[contact]]
+master = "floor/ymax"
+slave = "block/ymin"
+friction = 0.3
+"#;
+
+/// The last converged sub-step that a failed run writes is that state
+/// throughout: its stresses, reactions, contact surfaces, pressures and
+/// tractions and its residual. Found by a probe (2026-11-30): under
+/// Newton–Krylov the results held the failed attempt's stresses (σ_yy
+/// 6.3e12), contact faces at x ≈ 6e10 with no pressure, a reaction of
+/// 1.1e12 and the failed residual 0.68 beside `converged = 1`; and under
+/// both methods `contact_traction` was zero under Newton–Krylov in every
+/// run. Measured now: reaction −253,692 against N = 253,683; F_t = 71,019
+/// = the applied 0.6875 × 2.066e6 × 0.05.
+#[test]
+fn a_failed_contact_run_writes_its_last_sub_step_throughout() {
+    for (method, max_outer) in [("newton-krylov", ""), ("segregated", "max_outer = 3000\n")] {
+        let case = BLOCK_PUSHED_PAST_FRICTION.replace(
+            "steps = 2\n",
+            &format!("steps = 2\n[solver]\nnonlinear = \"{method}\"\n{max_outer}"),
+        );
+        let dir = tempfile::tempdir().unwrap();
+        let (code, outdir, err) = run_quietly(dir.path(), case.as_bytes());
+        assert_eq!(code, 1, "{method}: {err}");
+        assert!(err.contains("is written as increment 2"), "{method}: {err}");
+        let res = outdir.join("pushed");
+        let file = hdf5::File::open(res.join("pushed.h5")).unwrap();
+        let g = file.group("time/2").unwrap();
+        let t: f64 = g.attr("time").unwrap().read_scalar().unwrap();
+        let residual: f64 = g.attr("residual").unwrap().read_scalar().unwrap();
+        assert!(t > 1.5 && t < 1.75, "{method}: t = {t}");
+        assert!(residual < 1e-5, "{method}: residual {residual}");
+        let read = |name: &str| g.dataset(name).unwrap().read_2d::<f64>().unwrap();
+        let stress = read("block/stress");
+        assert!(
+            stress.iter().all(|s| s.abs() < 1e8),
+            "{method}: stress {stress:?}"
+        );
+        let centres = read("block/ymin/face_centres");
+        assert!(
+            centres.iter().all(|x| x.abs() < 2.0),
+            "{method}: {centres:?}"
+        );
+        let traction = read("block/ymin/contact_traction");
+        let pressure = g
+            .dataset("block/ymin/contact_pressure")
+            .unwrap()
+            .read_1d::<f64>()
+            .unwrap();
+        // 10 faces of 0.01 m²: N from the pressures, F_t from the tractions
+        let n: f64 = pressure.iter().map(|p| 0.01 * p).sum();
+        let ft: f64 = traction.column(0).iter().map(|t| 0.01 * t).sum();
+        let applied = 2.066e6 * (t - 1.0) * 0.05;
+        assert!((n - 253_683.0).abs() < 0.01 * n, "{method}: N {n}");
+        assert!(
+            (ft.abs() / applied - 1.0).abs() < 1e-3,
+            "{method}: F_t {ft} against {applied}"
+        );
+        let hist = std::fs::read_to_string(res.join("history.csv")).unwrap();
+        let last: Vec<f64> = hist
+            .lines()
+            .last()
+            .unwrap()
+            .split(',')
+            .map(|x| x.parse().unwrap())
+            .collect();
+        // time, iterations, residual, ymax Fx Fy Fz, normal force, area
+        assert!(
+            (last[4] + last[6]).abs() < 2e-3 * last[6],
+            "{method}: reaction {} against N {}",
+            last[4],
+            last[6]
+        );
+    }
+}

@@ -33,6 +33,17 @@ pub const LU_LIMIT: usize = 150_000;
 /// concentric spheres (2,500 unknowns) ran 2× slower with it.
 pub const LU_LIMIT_3D: usize = 2_000;
 
+/// Unknowns up to which `"auto"` factorises the Jacobian of a larger 3-D
+/// problem once a Krylov solve preconditioned by the segregated operator
+/// has used all its iterations: there the per-component operator misses
+/// what couples the components (a slender body's bending), and GMRES
+/// makes no progress at all. Found with a tetrahedral cantilever (gmsh,
+/// 455 cells, 2,439 unknowns, tip shear): every Newton step at 200 Krylov
+/// iterations with the linear residual at 0.9–1.0, and the increment
+/// failed; factorised, 1 Newton iteration (0.09 s). Meshes of 9,982 cells
+/// (29,946 unknowns): the same, and 2.7 s factorised.
+pub const STALLED_LU_LIMIT_3D: usize = 100_000;
+
 enum Factor {
     Lu(Box<DirectSolver>),
     Ilu(Box<BicgstabIlu0>),

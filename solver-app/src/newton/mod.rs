@@ -30,7 +30,7 @@ use fv_nonlinear::{
     Frozen, GmresParams, IterationReport, NewtonError, NewtonInfo, NewtonKrylov, NewtonParams,
     NonlinearProblem,
 };
-use jacobian::{AssembledJacobian, LU_LIMIT, LU_LIMIT_3D};
+use jacobian::{AssembledJacobian, LU_LIMIT, LU_LIMIT_3D, STALLED_LU_LIMIT_3D};
 use layout::StateLayout;
 use preconditioning::{Preconditioning, SWITCH_KRYLOV_ITERATIONS};
 use residual::{mean_cell_size, stiffness_area, ModelProblem, ResidualWork};
@@ -142,9 +142,19 @@ pub fn auto_preconditioner_report(bodies: &[Body], contacts: &ContactSet) -> Str
         (true, n) => format!(
             "the assembled Jacobian, factorised, from the first step (a plane problem of {n} unknowns, at most {START_JACOBIAN_LIMIT})"
         ),
-        (false, n) => format!(
-            "the segregated operator ({n} unknowns; more than {START_JACOBIAN_LIMIT}, or three-dimensional), switched to the assembled Jacobian after a Newton step that needs more than {SWITCH_KRYLOV_ITERATIONS} Krylov iterations when it can be factorised"
-        ),
+        (false, n) => {
+            let plane = layout.unsolved.iter().filter(|u| !**u).count() <= 2;
+            let switch = if n <= if plane { LU_LIMIT } else { LU_LIMIT_3D } {
+                format!(", switched to the assembled Jacobian (factorised) after a Newton step that needs more than {SWITCH_KRYLOV_ITERATIONS} Krylov iterations")
+            } else if !plane && n <= STALLED_LU_LIMIT_3D {
+                ", switched to the assembled Jacobian (factorised) after a Newton step whose Krylov solve used all its iterations".to_string()
+            } else {
+                String::new()
+            };
+            format!(
+                "the segregated operator ({n} unknowns; more than {START_JACOBIAN_LIMIT}, or three-dimensional){switch}"
+            )
+        }
     }
 }
 
@@ -214,6 +224,11 @@ impl NewtonKrylovSolver {
         let preconditioning = settings.linear.preconditioner;
         let direct = settings.linear.method == LinearMethod::Direct;
         let mut attempt_params = newton_params(settings);
+        let plastic = bodies
+            .iter()
+            .any(|b| !b.rigid && b.momentum.law.plastic_strain().is_some());
+        // only contact and plasticity make the residual non-smooth
+        attempt_params.accept_floor = plastic || !contacts.interfaces.is_empty();
         let mut notes = Vec::new();
         if !settings.restart_given {
             let restart = budgeted_restart(attempt_params.krylov.restart, n, layout.n_cells);
@@ -256,9 +271,7 @@ impl NewtonKrylovSolver {
             cell_size: mean_cell_size(bodies),
             stiffness_area: stiffness_area(bodies),
             notes,
-            plastic: bodies
-                .iter()
-                .any(|b| !b.rigid && b.momentum.law.plastic_strain().is_some()),
+            plastic,
             preferred_start: FirstIterate::Tangent,
             last_change: LastChange::default(),
             layout,
@@ -345,12 +358,25 @@ impl NewtonKrylovSolver {
     /// buckles with IC(0), run without it with the multigrid V-cycles: 90
     /// increments, at most 36 Newton iterations, 10.9 s against 22.1 s
     /// switching to it.
-    fn may_switch(&self) -> bool {
+    ///
+    /// A larger 3-D system, up to [`STALLED_LU_LIMIT_3D`] unknowns, is
+    /// factorised only after a Krylov solve that used all its iterations.
+    /// Returns the Krylov iterations of a Newton step beyond which to
+    /// switch, if the switch may happen.
+    fn switch_after(&self) -> Option<usize> {
+        if self.preconditioning != Preconditioning::Auto || self.jacobian.is_some() {
+            return None;
+        }
         let solved = self.layout.unsolved.iter().filter(|u| !**u).count();
-        let limit = if solved <= 2 { LU_LIMIT } else { LU_LIMIT_3D };
-        self.preconditioning == Preconditioning::Auto
-            && self.jacobian.is_none()
-            && solved * self.layout.n_nodes <= limit
+        let unknowns = solved * self.layout.n_nodes;
+        let cap = self.newton.krylov_params().max_iterations;
+        if unknowns <= if solved <= 2 { LU_LIMIT } else { LU_LIMIT_3D } {
+            Some(SWITCH_KRYLOV_ITERATIONS)
+        } else if solved > 2 && unknowns <= STALLED_LU_LIMIT_3D {
+            Some(cap.saturating_sub(1).max(SWITCH_KRYLOV_ITERATIONS))
+        } else {
+            None
+        }
     }
 
     /// The Newton solve of the current first iterate, its counts added to
@@ -362,7 +388,7 @@ impl NewtonKrylovSolver {
         total: &mut NewtonInfo,
         on_iteration: &mut dyn FnMut(usize, f64) -> ControlFlow<()>,
     ) -> Result<NewtonInfo, NewtonError> {
-        let switch_after = self.may_switch().then_some(SWITCH_KRYLOV_ITERATIONS);
+        let switch_after = self.switch_after();
         let mut x = std::mem::take(&mut self.x);
         let (newton, mut problem) = self.newton_and_problem(bodies, contacts);
         problem.switch_after = switch_after;
@@ -561,10 +587,20 @@ impl crate::nonlinear_solver::NonlinearSolver for NewtonKrylovSolver {
         };
         if total.at_floor && matches!(outcome, Ok(true)) {
             self.notes.push(format!(
-                "t = {:.6e}: converged at the residual floor {:.2e} (no Newton step decreased the residual further; up to {:.0} × the tolerance is accepted there: contact faces opening and closing at the solution)",
+                "t = {:.6e}: converged at the residual floor {:.2e} (no Newton step decreased the residual further; up to {:.0} × the tolerance is accepted there: a residual that contact faces opening and closing, or cells crossing the yield surface, make non-smooth at the solution)",
                 self.step_times.1,
                 total.residual,
                 self.newton.params.floor_factor
+            ));
+        } else if matches!(outcome, Ok(true)) && total.residual > self.newton.params.tolerance {
+            // converged below the round-off floor, which is above
+            // tolerance × the force scale (a load small against the
+            // bodies' stiffness): the log's residual would look unconverged
+            self.notes.push(format!(
+                "t = {:.6e}: converged at the round-off floor, relative residual {:.2e} (10⁻¹³ Σ K|Γ| over the bodies' faces, above the tolerance {:.1e} × the force scale: a load small against the bodies' stiffness)",
+                self.step_times.1,
+                total.residual,
+                self.newton.params.tolerance
             ));
         }
         let restart = self.newton.krylov_params().restart;

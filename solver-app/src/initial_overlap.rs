@@ -45,34 +45,66 @@ pub fn check_initial_overlap(
             (&ci.slave, &ci.master, "slave"),
             (&ci.master, &ci.slave, "master"),
         ] {
-            if let Some((f, x, layer)) = deepest_face_inside(inside, other, bodies) {
-                let b = &bodies[other.body];
-                return Err(case.source.error(
-                    &format!("contact[{i}].{key}"),
-                    format!(
-                        "the contact surfaces start overlapping deeper than the contact search reaches: face {f} of '{}/{}' (centre {:.4e}, {:.4e}, {:.4e}) lies inside body '{}', in the cell layer {layer} below its patch '{}' (the search reaches about one cell layer into each body); move the bodies apart so that they overlap by less than a cell height, or start them apart and press them together",
-                        bodies[inside.body].name,
-                        bodies[inside.body].mesh.patches[inside.patch].name,
-                        x.x,
-                        x.y,
-                        x.z,
-                        b.name,
-                        b.mesh.patches[other.patch].name,
-                    ),
-                ));
-            }
+            let Some((f, x, depth)) = deepest_face_inside(inside, other, bodies) else {
+                continue;
+            };
+            let b = &bodies[other.body];
+            let whence = match depth {
+                Depth::Layer(layer) => format!(
+                    "in the cell layer {layer} below its patch '{}' (the search reaches about one cell layer into each body)",
+                    b.mesh.patches[other.patch].name
+                ),
+                Depth::Distance { depth, reach } => format!(
+                    "{depth:.4e} below its patch '{}', deeper than the search's reach there, {reach:.4e} (the two surfaces' mean face sizes: eq. 4.10)",
+                    b.mesh.patches[other.patch].name
+                ),
+            };
+            return Err(case.source.error(
+                &format!("contact[{i}].{key}"),
+                format!(
+                    "the contact surfaces start overlapping deeper than the contact search reaches: face {f} of '{}/{}' (centre {:.4e}, {:.4e}, {:.4e}) lies inside body '{}', {whence}; move the bodies apart so that they overlap by less than a cell height, or start them apart and press them together",
+                    bodies[inside.body].name,
+                    bodies[inside.body].mesh.patches[inside.patch].name,
+                    x.x,
+                    x.y,
+                    x.z,
+                    b.name,
+                ),
+            ));
         }
     }
     Ok(())
 }
 
-/// The face of `side` whose centre lies deepest inside the body of
-/// `other` beyond [`REACHED_LAYERS`]: face index, centre and cell layer.
+/// How deep a face centre lies inside the other body.
+enum Depth {
+    /// In this cell layer below the other's patch, beyond
+    /// [`REACHED_LAYERS`].
+    Layer(u8),
+    /// Farther below the other's patch than the detection's boxes reach:
+    /// each face box is extruded by its surface's mean face size into its
+    /// body (`contact_detect`, e⁻ = h̄ of eq. 4.10, h̄ estimated as the mean
+    /// √|Γ_f|), so two faces are paired only while they overlap by less
+    /// than the sum of the two. A rigid floor of one cell layer 0.65 high,
+    /// its top 0.45 into a block (faces 0.224 and 0.158): no pair, and the
+    /// block went through the floor.
+    Distance { depth: f64, reach: f64 },
+}
+
+/// Mean √|Γ_f| of a contact surface (the detection's h̄).
+fn mean_face_size(side: &ContactSide) -> f64 {
+    let a = &side.surface.face_mag;
+    a.iter().map(|a| a.sqrt()).sum::<f64>() / a.len().max(1) as f64
+}
+
+/// The face of `side` whose centre lies inside the body of `other` out of
+/// the contact search's reach ([`Depth`]), the deepest by cell layer, else
+/// by distance: face index, centre and depth.
 fn deepest_face_inside(
     side: &ContactSide,
     other: &ContactSide,
     bodies: &[Body],
-) -> Option<(usize, Vector, u8)> {
+) -> Option<(usize, Vector, Depth)> {
     let b = &bodies[other.body];
     let mesh = &b.mesh;
     let (cf_off, cf) = mesh.cell_faces();
@@ -116,10 +148,30 @@ fn deepest_face_inside(
             shallowest[f] = shallowest[f].min(layers[c]);
         }
     }
-    (0..centres.len())
+    if let Some(f) = (0..centres.len())
         .filter(|&f| inside[f] && shallowest[f] > REACHED_LAYERS)
         .max_by_key(|&f| shallowest[f])
-        .map(|f| (f, centres[f], shallowest[f]))
+    {
+        return Some((f, centres[f], Depth::Layer(shallowest[f])));
+    }
+    // within the layers: below the nearest face of the other patch, along
+    // its normal, farther than the two extrusions reach
+    let reach = mean_face_size(side) + mean_face_size(other);
+    let o = &other.surface;
+    (0..centres.len())
+        .filter(|&f| inside[f])
+        .filter_map(|f| {
+            let x = centres[f];
+            let nearest = (0..o.n_faces()).min_by(|&a, &b| {
+                (o.face_centres[a] - x)
+                    .norm_squared()
+                    .total_cmp(&(o.face_centres[b] - x).norm_squared())
+            })?;
+            let depth = (o.face_centres[nearest] - x).dot(&o.face_normals[nearest]);
+            (depth > reach).then_some((f, depth))
+        })
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(f, depth)| (f, centres[f], Depth::Distance { depth, reach }))
 }
 
 /// Axis-aligned box of `points` (parry's type, for its BVH).

@@ -2,7 +2,9 @@
 //! up once and refreshed at every load increment.
 mod restart;
 
-use crate::case::{BodySpec, BoundarySpec, Case, InputError, MaterialModel, StrainKind};
+use crate::case::{
+    BodySpec, BoundarySpec, Case, InputError, MaterialModel, MaterialSpec, StrainKind,
+};
 use fv_discretise::{wedge_rotations, Inertia, PatchCondition, SolidMomentum, StressLaw};
 use fv_materials::{
     Hardening, LargeStrainMaterial, LinearElastic, NeoHookean, NeoHookeanPlastic, PlaneStress,
@@ -221,6 +223,9 @@ pub struct Body {
     /// at finite strain the body's stress is λ_z σ
     /// (`fv_materials::PlaneStress`), reported divided by λ_z.
     pub plane_stress: bool,
+    /// The material as the case gave it (a continued run must give the
+    /// same: `restart::case_signature`).
+    pub material: MaterialSpec,
     /// Motion of a rigid body at the current time: translation, rotation
     /// and its origin (from its first displacement or rigid-motion patch).
     pub rigid_motion: (Vector, Tensor, Vector),
@@ -914,6 +919,7 @@ fn build_body(
         initial_face_centres,
         extent,
         plane_stress: spec.material.plane_stress,
+        material: spec.material.clone(),
         patch_specs,
         setup_notes,
         rigid_motion: (Vector::zeros(), Tensor::identity(), Vector::zeros()),

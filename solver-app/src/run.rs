@@ -333,8 +333,13 @@ fn run_case_noting(
         log.warn(n);
     }
 
+    // a continued run goes on along the case's time grid from the time it
+    // starts at, whatever grid the run that wrote the file had: increments
+    // K + 1, K + 2, … at the grid's times after t_K (a case continued
+    // with twice the steps solved t = 0.375 after t = 0.5)
+    let (steps, grid_shift) = continued_grid(case, resumed.k, resumed.time);
     let tty = std::io::stderr().is_terminal() && !opts.quiet && !opts.no_files;
-    let mut progress = Progress::new(tty, resumed.k, case.time.steps);
+    let mut progress = Progress::new(tty, resumed.k, steps);
 
     let reassemble_every_increment = bodies
         .iter()
@@ -361,7 +366,7 @@ fn run_case_noting(
         Some(_) => SummaryFigures::of(&bodies, &contacts),
         None => SummaryFigures::default(),
     };
-    for k in resumed.k + 1..=case.time.steps {
+    for k in resumed.k + 1..=steps {
         if failure.is_some() || interrupted.is_some() {
             break;
         }
@@ -369,7 +374,7 @@ fn run_case_noting(
             interrupted = Some(sig);
             break;
         }
-        let t = case.time.time_at(k);
+        let t = case.time.time_at(k.saturating_add_signed(grid_shift));
         let increment_clock = Instant::now();
         // the increment, in sub-steps when an attempt fails (cut-back)
         // converged while every sub-step is
@@ -631,7 +636,7 @@ fn run_case_noting(
                 let seconds = increment_clock.elapsed().as_secs_f64();
                 let line = format!(
                     "increment {k}/{} t = {}: {}, residual {:.3e}, {}, {}{}",
-                    case.time.steps,
+                    steps,
                     Num(t),
                     count(info.outer_iterations, "outer iteration", "outer iterations"),
                     info.residual,
@@ -657,8 +662,7 @@ fn run_case_noting(
                 for l in crate::results::full_revolution_lines(&bodies, &contacts) {
                     log.write(&l);
                 }
-                let with_fields =
-                    k % case.output.every == 0 || k == case.time.steps || !info.converged;
+                let with_fields = k % case.output.every == 0 || k == steps || !info.converged;
                 record_increment(
                     &mut history,
                     &mut fields,
@@ -868,7 +872,7 @@ fn run_case_noting(
                 "interrupted by {} after increment {}/{} (t = {}): results so far in {}",
                 signal_name(sig),
                 summary.increments,
-                case.time.steps,
+                steps,
                 Num(summary.time_reached),
                 d.display()
             )),
@@ -879,7 +883,7 @@ fn run_case_noting(
             "interrupted by {} after increment {}/{}",
             signal_name(sig),
             summary.increments,
-            case.time.steps
+            steps
         ));
     }
     Ok(RunOutcome {
@@ -1155,6 +1159,24 @@ fn contact_names(case: &Case, which: &[usize]) -> String {
         })
         .collect::<Vec<_>>()
         .join(", ")
+}
+
+/// The last increment of a run continued from increment `k` at time `t`,
+/// and the shift from its increments to the case's time grid: increment
+/// `k + i` is solved to the grid's time `time_at(k + i + shift)`, the
+/// grid's times after `t` one by one. A run that starts afresh (or
+/// continues a run of the same grid) has no shift.
+fn continued_grid(case: &Case, k: usize, t: f64) -> (usize, isize) {
+    let steps = case.time.steps;
+    if k == 0 {
+        return (steps, 0);
+    }
+    let after = t + 1e-9 * case.time.end.abs();
+    let first = (1..=steps)
+        .find(|&j| case.time.time_at(j) > after)
+        .unwrap_or(steps + 1);
+    let shift = first as isize - (k as isize + 1);
+    (steps.saturating_add_signed(-shift), shift)
 }
 
 /// Back to the last accepted state of every body and contact (the

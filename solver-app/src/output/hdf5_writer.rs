@@ -689,7 +689,9 @@ impl ResultsWriter {
                 let stress = expand(cells, b.stress);
                 field(&xg, &xp, "stress", stress.as_flattened(), &[nf, 6], at)?;
             }
-            field(&xg, &xp, "von_mises", &expand(cells, &vm), &[nf], at)?;
+            if fields.contains(Field::VonMises) {
+                field(&xg, &xp, "von_mises", &expand(cells, &vm), &[nf], at)?;
+            }
             if let Some(ps) = b.plastic_strain {
                 field(&xg, &xp, "plastic_strain", &expand(cells, ps), &[nf], at)?;
             }
@@ -804,7 +806,9 @@ impl ResultsWriter {
                     let s = expand(map, b.stress);
                     field(&xg, &xp, "stress", s.as_flattened(), &[n, 6], None)?;
                 }
-                field(&xg, &xp, "von_mises", &expand(map, vm), &[n], None)?;
+                if fields.contains(Field::VonMises) {
+                    field(&xg, &xp, "von_mises", &expand(map, vm), &[n], None)?;
+                }
                 if let Some(ps) = b.plastic_strain {
                     field(&xg, &xp, "plastic_strain", &expand(map, ps), &[n], None)?;
                 }

@@ -18,6 +18,10 @@ pub fn case_signature(bodies: &[Body], contacts: &ContactSet) -> Vec<String> {
         v.push(format!("body {n}: rigid = {}", b.rigid));
         if !b.rigid {
             v.push(format!("body {n}: material = {}", b.momentum.law.name()));
+            v.push(format!(
+                "body {n}: {CONSTANTS} = {}",
+                material_constants(&b.material)
+            ));
             let strain = if b.momentum.law.is_updated_lagrangian() {
                 "large"
             } else {
@@ -52,6 +56,33 @@ pub fn case_signature(bodies: &[Body], contacts: &ContactSet) -> Vec<String> {
     v
 }
 
+/// The key of a body's material constants.
+const CONSTANTS: &str = "material constants";
+
+/// The case's material constants, in full precision: a continued run
+/// with another E, ν, density or hardening would take the saved stresses
+/// and plastic state to a different material.
+fn material_constants(m: &crate::case::MaterialSpec) -> String {
+    let mut s = format!("E {:e}, nu {:e}", m.e, m.nu);
+    if let Some(rho) = m.rho {
+        s.push_str(&format!(", rho {rho:e}"));
+    }
+    if m.plane_stress {
+        s.push_str(", plane stress");
+    }
+    if let Some(y) = m.yield_stress {
+        s.push_str(&format!(", yield {y:e}"));
+    }
+    if let Some(h) = m.hardening {
+        s.push_str(&format!(", hardening {h:e}"));
+    }
+    if let Some(t) = &m.hardening_table {
+        let rows: Vec<String> = t.iter().map(|(e, y)| format!("[{e:e}, {y:e}]")).collect();
+        s.push_str(&format!(", hardening_table [{}]", rows.join(", ")));
+    }
+    s
+}
+
 fn split(line: &str) -> (&str, &str) {
     line.split_once(" = ").unwrap_or((line, ""))
 }
@@ -68,8 +99,14 @@ pub fn check_compatible(file: &Path, saved: &[String], now: &[String]) -> Result
             None => diffs.push(format!("{key}: {value} in the file, absent from the case")),
         }
     }
+    // files written before the constants were recorded (2026-11-30) have
+    // the model's name only
+    let constants_recorded = saved.iter().any(|l| split(l).0.ends_with(CONSTANTS));
     for line in now {
         let (key, value) = split(line);
+        if key.ends_with(CONSTANTS) && !constants_recorded {
+            continue;
+        }
         if !saved.iter().any(|l| split(l).0 == key) {
             diffs.push(format!("{key}: {value} in the case, absent from the file"));
         }

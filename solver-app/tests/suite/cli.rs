@@ -1339,6 +1339,61 @@ fn surfaces_overlapping_beyond_the_search_are_refused() {
     assert!(force > 7.0 && force < 8.3, "normal force {force}");
 }
 
+/// A rigid floor of one cell layer (0.65 high) whose top starts 0.45
+/// inside a block: within the layer the search reaches, but deeper than
+/// the face boxes' extrusions (the two surfaces' mean face sizes, 0.224 +
+/// 0.158), so no pair was found and the block went through the floor
+/// with no contact force (found by a probe, 2026-11-30). Refused now; at
+/// 0.30 it runs.
+#[test]
+fn a_deep_overlap_within_one_cell_layer_is_refused() {
+    let case = |top: f64| {
+        format!(
+            r#"title = "deep"
+[time]
+end = 1.0
+steps = 2
+[[body]]
+name = "block"
+mesh = {{ generator = "box", min = [0.0, 0.0, 0.0], max = [1.0, 0.5, 0.1], cells = [4, 2, 1] }}
+material = {{ model = "linear-elastic", E = 1000.0, nu = 0.3 }}
+[body.boundary.ymax]
+type = "displacement"
+value = {{ table = [[0.0, [0.0, 0.0, 0.0]], [1.0, [0.0, -0.005, 0.0]]] }}
+[body.boundary.zmin]
+type = "empty"
+[body.boundary.zmax]
+type = "empty"
+[[body]]
+name = "floor"
+mesh = {{ generator = "box", min = [-1.0, -0.2, 0.0], max = [2.0, {top}, 0.1], cells = [6, 1, 1] }}
+rigid = true
+[body.boundary.ymin]
+type = "displacement"
+value = [0.0, 0.0, 0.0]
+[[contact]]
+master = "floor/ymax"
+slave = "block/ymin"
+"#
+        )
+    };
+    let dir = tempfile::tempdir().unwrap();
+    expect_input_error(
+        dir.path(),
+        case(0.45).as_bytes(),
+        &[
+            "contact[0]",
+            "start overlapping deeper than the contact search reaches",
+            "deeper than the search's reach there",
+        ],
+    );
+    let (code, outdir, err) = run_quietly(dir.path(), case(0.3).as_bytes());
+    assert_eq!(code, 0, "{err}");
+    let (_, v) = read_summary(&outdir.join("deep"));
+    let force = v["contacts"][0]["normal_force"].as_f64().unwrap();
+    assert!(force > 0.0, "normal force {force}");
+}
+
 /// A time table that ends before `[time] end` holds its last value, as
 /// the contract says; the log says so (usually a ramp meant to reach the
 /// end), naming the key.
@@ -1725,5 +1780,39 @@ fn a_failed_contact_run_writes_its_last_sub_step_throughout() {
             last[4],
             last[6]
         );
+    }
+}
+
+/// `[output] fields` without `von_mises` on a contact case: the results
+/// writer indexed the von Mises stress it had not formed for the contact
+/// patches' cells and panicked, and the run lost its `summary.json`
+/// (found by a probe, 2026-11-30). Each choice now writes what it names.
+#[test]
+fn any_choice_of_fields_writes_a_contact_case() {
+    for (fields, kept) in [
+        ("[\"stress\"]", vec!["stress"]),
+        ("[]", vec![]),
+        ("[\"gap\", \"contact_pressure\"]", vec![]),
+    ] {
+        let case = block_on_floor(
+            "fields",
+            ("0", "0.5"),
+            "[body.boundary.zmax]\ntype = \"displacement\"\nvalue = [0, 0, -0.005]\n",
+            "",
+        ) + &format!("[output]\nfields = {fields}\n");
+        let dir = tempfile::tempdir().unwrap();
+        let (code, out, err) = run_quietly(dir.path(), case.as_bytes());
+        assert_eq!(code, 0, "fields = {fields}: {err}");
+        let (_, v) = read_summary(&out.join("fields"));
+        assert!(v["converged"].as_bool().unwrap(), "fields = {fields}");
+        let file = hdf5::File::open(out.join("fields/fields.h5")).unwrap();
+        let block = file.group("time/1/block").unwrap();
+        for name in ["displacement", "stress", "von_mises"] {
+            assert_eq!(
+                block.link_exists(name),
+                kept.contains(&name),
+                "fields = {fields}: {name}"
+            );
+        }
     }
 }

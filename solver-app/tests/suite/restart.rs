@@ -232,6 +232,18 @@ fn a_case_that_does_not_fit_the_results_is_refused() {
         "{err}"
     );
     assert!(err.contains("block.h5"), "{err}");
+    // another Young's modulus (a probe restarted with E doubled, and the
+    // forces jumped threefold without a word)
+    let stiffer = case.replacen("E = 200.0", "E = 400.0", 1);
+    assert_ne!(stiffer, case);
+    let (code, err) = run(dir.path(), &stiffer, &["--restart", f]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains(
+            "body block: material constants: E 2e2, nu 3e-1 in the file, E 4e2, nu 3e-1 in the case"
+        ),
+        "{err}"
+    );
     // another body
     let more = format!(
         "{case}[[body]]\nname = \"lid\"\nrigid = true\nmesh = {{ generator = \"box\", min = [0, 1, 0], max = [1, 1.2, 1], cells = [1, 1, 1] }}\n"
@@ -275,6 +287,42 @@ fn a_case_that_does_not_fit_the_results_is_refused() {
     let (code, err) = run(dir.path(), &case, &["--restart", f]);
     assert_eq!(code, 0, "{err}");
     assert_eq!(history(&dir.path().join("out/block")).len(), 2);
+}
+
+/// A continued run whose case changes its time steps (the contract lets
+/// it) goes on along its own grid from the time it starts at. A probe
+/// (2026-11-30) continued a 2-step run from t = 0.5 with 4 steps, and
+/// the next increment was solved at t = 0.5 again, the one after at 0.75:
+/// each increment k took the new grid's time_at(k).
+#[test]
+fn a_continued_run_with_other_steps_goes_on_in_time() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = crate::cli::GOOD.replace("[solver]", "[output]\nrestart_every = 1\n[solver]");
+    let (code, err) = run(dir.path(), &case, &[]);
+    assert_eq!(code, 0, "{err}");
+    let whole = history(&dir.path().join("out/block"));
+    let file = h5(dir.path(), "block");
+    for (steps, times) in [
+        ("steps = 4", vec![0.5, 0.75, 1.0]),
+        ("steps = 1", vec![0.5, 1.0]),
+    ] {
+        let finer = case.replace("steps = 2", steps);
+        let (code, err) = run(
+            dir.path(),
+            &finer,
+            &["--restart", file.to_str().unwrap(), "--from-increment", "1"],
+        );
+        assert_eq!(code, 0, "{steps}: {err}");
+        let h = history(&dir.path().join("out/block"));
+        let got: Vec<f64> = h.iter().map(|r| r[0]).collect();
+        assert_eq!(got, times, "{steps}");
+        // a linear problem: the end state is the uninterrupted run's
+        let (a, b) = (&h[h.len() - 1], &whole[whole.len() - 1]);
+        let scale = b.iter().skip(3).fold(0.0f64, |m, y| m.max(y.abs()));
+        for (x, y) in a.iter().zip(b).skip(3) {
+            assert!((x - y).abs() <= 1e-5 * scale, "{steps}: {a:?} vs {b:?}");
+        }
+    }
 }
 
 /// validation/cases/wire-drawing cut to `steps` increments of its 1 ms

@@ -9,9 +9,32 @@
 //! under way, `summary.json` says `"interrupted": true`, and `fvc` exits
 //! with 128 + the signal's number (130, 143), as a shell reports a process
 //! ended by that signal. A second signal ends the process at once (the
-//! increment being written may then be incomplete).
+//! increment being written may then be incomplete) — unless it comes
+//! within [`REPEAT_WINDOW_NS`] of the first: GNU `timeout` sends its
+//! signal to the process and then to its process group, which holds the
+//! process, so one request arrives twice within microseconds (found by a
+//! probe: `timeout 60 fvc run …` ended without `summary.json`).
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
+
+/// A signal this soon after the first is the same request delivered
+/// twice, not a second one (a person pressing Ctrl-C twice takes longer).
+#[cfg(unix)]
+const REPEAT_WINDOW_NS: u64 = 100_000_000;
+
+/// Monotonic clock in nanoseconds (clock_gettime is async-signal-safe).
+#[cfg(unix)]
+fn monotonic_ns() -> u64 {
+    let mut ts = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: clock_gettime writes the timespec it is given
+    unsafe { libc::clock_gettime(libc::CLOCK_MONOTONIC, &mut ts) };
+    (ts.tv_sec as u64)
+        .saturating_mul(1_000_000_000)
+        .saturating_add(ts.tv_nsec as u64)
+}
 
 /// The stop request of a run: none until a signal arrived.
 #[derive(Debug, Clone, Default)]
@@ -33,15 +56,25 @@ impl Interrupt {
     #[cfg(unix)]
     pub fn install() -> std::io::Result<Self> {
         use signal_hook::consts::{SIGINT, SIGTERM};
-        use std::sync::atomic::AtomicBool;
+        use std::sync::atomic::AtomicU64;
         let me = Self::new();
-        let armed = Arc::new(AtomicBool::new(false));
+        // when the first signal came (0: none yet)
+        let first = Arc::new(AtomicU64::new(0));
         for sig in [SIGINT, SIGTERM] {
-            // the order matters: the exit is tried before the flag is set,
-            // so the first signal only arms it
-            signal_hook::flag::register_conditional_shutdown(sig, 128 + sig, armed.clone())?;
-            signal_hook::flag::register_usize(sig, me.signal.clone(), sig as usize)?;
-            signal_hook::flag::register(sig, armed.clone())?;
+            let (first, signal) = (first.clone(), me.signal.clone());
+            let action = move || {
+                let now = monotonic_ns().max(1);
+                match first.compare_exchange(0, now, Ordering::SeqCst, Ordering::SeqCst) {
+                    Ok(_) => signal.store(sig as usize, Ordering::SeqCst),
+                    Err(t0) if now.saturating_sub(t0) > REPEAT_WINDOW_NS => {
+                        signal_hook::low_level::exit(128 + sig)
+                    }
+                    Err(_) => {}
+                }
+            };
+            // SAFETY: the action is async-signal-safe: atomics, the
+            // monotonic clock and _exit only
+            unsafe { signal_hook::low_level::register(sig, action) }?;
         }
         Ok(me)
     }

@@ -807,6 +807,9 @@ fn run_case_noting(
                     }
                     summary.outer_iterations += total.outer_iterations;
                     summary.linear_iterations += total.linear_iterations;
+                    // increment k is in the results (at t0): the summary
+                    // counts it, as /time/<k> and history.csv do
+                    summary.increments = k;
                     summary.time_reached = t0;
                     msg.push_str(&format!(
                         "; its last converged sub-step, t = {}, is written as increment {k}",

@@ -1773,6 +1773,10 @@ fn a_failed_contact_run_writes_its_last_sub_step_throughout() {
             .split(',')
             .map(|x| x.parse().unwrap())
             .collect();
+        // the summary counts the increment written, as the history does
+        let (_, v) = read_summary(&res);
+        assert_eq!(v["increments"], 2, "{method}");
+        assert_eq!(v["time_reached"].as_f64(), Some(t), "{method}");
         // time, iterations, residual, ymax Fx Fy Fz, normal force, area
         assert!(
             (last[4] + last[6]).abs() < 2e-3 * last[6],

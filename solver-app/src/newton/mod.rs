@@ -131,6 +131,31 @@ fn stiff_contact(contacts: &ContactSet) -> bool {
         .any(|ci| ci.deformable_pair && ci.penalty_scale.value() >= STIFF_PENALTY_SCALE)
 }
 
+/// When `"auto"` switches from the segregated operator to the assembled
+/// Jacobian, factorised (`NewtonKrylovSolver::switch_after`).
+enum AutoSwitch {
+    /// After a Newton step of more than [`SWITCH_KRYLOV_ITERATIONS`]
+    /// Krylov iterations: a plane problem up to [`LU_LIMIT`] unknowns, a
+    /// 3-D one up to [`LU_LIMIT_3D`].
+    BeyondKrylov,
+    /// After a Newton step whose Krylov solve used all its iterations: a
+    /// 3-D problem up to [`STALLED_LU_LIMIT_3D`] unknowns.
+    AfterStall,
+}
+
+/// The switch of `"auto"` for the state's size, if any.
+fn auto_switch(layout: &StateLayout) -> Option<AutoSwitch> {
+    let solved = layout.unsolved.iter().filter(|u| !**u).count();
+    let unknowns = solved * layout.n_nodes;
+    if unknowns <= if solved <= 2 { LU_LIMIT } else { LU_LIMIT_3D } {
+        Some(AutoSwitch::BeyondKrylov)
+    } else if solved > 2 && unknowns <= STALLED_LU_LIMIT_3D {
+        Some(AutoSwitch::AfterStall)
+    } else {
+        None
+    }
+}
+
 /// What `"auto"` preconditions the bodies' Newton steps with, and why
 /// (`fvc check` and the run's log).
 pub fn auto_preconditioner_report(bodies: &[Body], contacts: &ContactSet) -> String {
@@ -143,13 +168,10 @@ pub fn auto_preconditioner_report(bodies: &[Body], contacts: &ContactSet) -> Str
             "the assembled Jacobian, factorised, from the first step (a plane problem of {n} unknowns, at most {START_JACOBIAN_LIMIT})"
         ),
         (false, n) => {
-            let plane = layout.unsolved.iter().filter(|u| !**u).count() <= 2;
-            let switch = if n <= if plane { LU_LIMIT } else { LU_LIMIT_3D } {
-                format!(", switched to the assembled Jacobian (factorised) after a Newton step that needs more than {SWITCH_KRYLOV_ITERATIONS} Krylov iterations")
-            } else if !plane && n <= STALLED_LU_LIMIT_3D {
-                ", switched to the assembled Jacobian (factorised) after a Newton step whose Krylov solve used all its iterations".to_string()
-            } else {
-                String::new()
+            let switch = match auto_switch(&layout) {
+                Some(AutoSwitch::BeyondKrylov) => format!(", switched to the assembled Jacobian (factorised) after a Newton step that needs more than {SWITCH_KRYLOV_ITERATIONS} Krylov iterations"),
+                Some(AutoSwitch::AfterStall) => ", switched to the assembled Jacobian (factorised) after a Newton step whose Krylov solve used all its iterations".to_string(),
+                None => String::new(),
             };
             format!(
                 "the segregated operator ({n} unknowns; more than {START_JACOBIAN_LIMIT}, or three-dimensional){switch}"
@@ -367,15 +389,10 @@ impl NewtonKrylovSolver {
         if self.preconditioning != Preconditioning::Auto || self.jacobian.is_some() {
             return None;
         }
-        let solved = self.layout.unsolved.iter().filter(|u| !**u).count();
-        let unknowns = solved * self.layout.n_nodes;
         let cap = self.newton.krylov_params().max_iterations;
-        if unknowns <= if solved <= 2 { LU_LIMIT } else { LU_LIMIT_3D } {
-            Some(SWITCH_KRYLOV_ITERATIONS)
-        } else if solved > 2 && unknowns <= STALLED_LU_LIMIT_3D {
-            Some(cap.saturating_sub(1).max(SWITCH_KRYLOV_ITERATIONS))
-        } else {
-            None
+        match auto_switch(&self.layout)? {
+            AutoSwitch::BeyondKrylov => Some(SWITCH_KRYLOV_ITERATIONS),
+            AutoSwitch::AfterStall => Some(cap.saturating_sub(1).max(SWITCH_KRYLOV_ITERATIONS)),
         }
     }
 

@@ -71,6 +71,17 @@ fn read_summary(res: &Path) -> (String, serde_json::Value) {
     (text, v)
 }
 
+/// Runs `case` (titled `title`), expects it to solve, and returns the
+/// normal force of its first contact from `summary.json`.
+fn first_contact_force(dir: &Path, case: &str, title: &str) -> f64 {
+    let (code, outdir, err) = run_quietly(dir, case.as_bytes());
+    assert_eq!(code, 0, "{err}");
+    let (summary, v) = read_summary(&outdir.join(title));
+    v["contacts"][0]["normal_force"]
+        .as_f64()
+        .unwrap_or_else(|| panic!("no contact force in {summary}"))
+}
+
 fn expect_input_error(dir: &Path, case: &[u8], expected: &[&str]) {
     let (code, _, err) = run_quietly(dir, case);
     assert_eq!(code, 2, "exit code for {expected:?}; stderr: {err}");
@@ -1332,10 +1343,7 @@ fn surfaces_overlapping_beyond_the_search_are_refused() {
             "body 'lower'",
         ],
     );
-    let (code, outdir, err) = run_quietly(dir.path(), overlapping_blocks(0.15).as_bytes());
-    assert_eq!(code, 0, "{err}");
-    let (_, v) = read_summary(&outdir.join("overlap"));
-    let force = v["contacts"][0]["normal_force"].as_f64().unwrap();
+    let force = first_contact_force(dir.path(), &overlapping_blocks(0.15), "overlap");
     assert!(force > 7.0 && force < 8.3, "normal force {force}");
 }
 
@@ -1387,10 +1395,7 @@ slave = "block/ymin"
             "deeper than the search's reach there",
         ],
     );
-    let (code, outdir, err) = run_quietly(dir.path(), case(0.3).as_bytes());
-    assert_eq!(code, 0, "{err}");
-    let (_, v) = read_summary(&outdir.join("deep"));
-    let force = v["contacts"][0]["normal_force"].as_f64().unwrap();
+    let force = first_contact_force(dir.path(), &case(0.3), "deep");
     assert!(force > 0.0, "normal force {force}");
 }
 

@@ -54,6 +54,34 @@ const BETA_FLOOR: f64 = 1e-9;
 /// ended. The springs only shape the path (see [`ContactSide::beta`]).
 const TOUCHING_GAP: f64 = 1e-6;
 
+/// Whether face `i` of a contact side carries no pressure but has its gap
+/// closed to within [`TOUCHING_GAP`] of its size: bodies meshed touching.
+/// A one-sided penalty has no derivative there, so the linearisations
+/// give such a face the spring of a face in contact.
+pub fn touching_without_pressure(
+    side: &ContactSide,
+    contact: &contact_force::SurfaceContact,
+    i: usize,
+) -> bool {
+    let c = contact.contact_fraction.get(i).copied().unwrap_or(0.0);
+    let g = contact.gap.get(i).copied().unwrap_or(f64::INFINITY);
+    c == 0.0 && g.is_finite() && g <= TOUCHING_GAP * side.surface.face_mag[i].sqrt()
+}
+
+/// The share of face `i`'s penalty spring in a linearisation: its contact
+/// fraction, or 1 where it is [`touching_without_pressure`].
+pub fn linearised_fraction(
+    side: &ContactSide,
+    contact: &contact_force::SurfaceContact,
+    i: usize,
+) -> f64 {
+    if touching_without_pressure(side, contact, i) {
+        1.0
+    } else {
+        contact.contact_fraction.get(i).copied().unwrap_or(0.0)
+    }
+}
+
 /// ε_n times the mean half-cell compliance δ_n/K of the two contact
 /// surfaces above which a pair of deformable bodies counts as stiffly
 /// coupled: then the linearisation starts from the carried traction
@@ -818,17 +846,9 @@ impl ContactInterface {
             (&mut self.master, &self.tractions.master),
             (&mut self.slave, &self.tractions.slave),
         ] {
-            for (i, (b, &c)) in side
-                .beta
-                .iter_mut()
-                .zip(&fraction.contact_fraction)
-                .enumerate()
-            {
-                let g = fraction.gap[i];
-                let touching = c == 0.0
-                    && g.is_finite()
-                    && g <= TOUCHING_GAP * side.surface.face_mag[i].sqrt();
-                let c = if touching { 1.0 } else { c };
+            for i in 0..side.beta.len() {
+                let c = linearised_fraction(side, fraction, i);
+                let b = &mut side.beta[i];
                 let kept = *b * memory;
                 *b = if kept < BETA_FLOOR { c } else { kept.max(c) };
             }
@@ -881,6 +901,23 @@ impl ContactSet {
         self.interfaces
             .iter()
             .any(|c| c.master.body == bi || c.slave.body == bi)
+    }
+
+    /// Whether a face of a deformable body's contact side is
+    /// [`touching_without_pressure`] at the last evaluation.
+    pub fn any_touching_without_pressure(&self, bodies: &[Body]) -> bool {
+        self.interfaces.iter().any(|c| {
+            [
+                (&c.master, &c.tractions.master),
+                (&c.slave, &c.tractions.slave),
+            ]
+            .into_iter()
+            .any(|(side, contact)| {
+                !bodies[side.body].rigid
+                    && (0..side.surface.n_faces())
+                        .any(|i| touching_without_pressure(side, contact, i))
+            })
+        })
     }
 
     /// Builds the contact pairs of a case (after the bodies).

@@ -17,11 +17,6 @@ use fv_discretise::{
 };
 use fv_mesh::{Tensor, Vector};
 
-/// A face of a contact surface whose gap is at most this fraction of its
-/// size (√area) gets the spring of a face in contact although it carries
-/// no pressure yet.
-const TOUCHING_GAP: f64 = 1e-6;
-
 /// Systems of at most this many scalar unknowns are factorised exactly
 /// (sparse LU); larger ones by ILU(0).
 pub const LU_LIMIT: usize = 150_000;
@@ -266,18 +261,7 @@ impl AssembledJacobian {
                 let nn = n * n.transpose();
                 (nn * eps + (Tensor::identity() - nn) * eps_t) * scale
             };
-            let beta = |side: &crate::contact_coupling::ContactSide,
-                        contact: &contact_force::SurfaceContact,
-                        i: usize| {
-                let c = contact.contact_fraction.get(i).copied().unwrap_or(0.0);
-                let g = contact.gap.get(i).copied().unwrap_or(f64::INFINITY);
-                if c == 0.0 && g.is_finite() && g <= TOUCHING_GAP * side.surface.face_mag[i].sqrt()
-                {
-                    1.0
-                } else {
-                    c
-                }
-            };
+            let beta = crate::contact_coupling::linearised_fraction;
             let (mb, sb) = (ci.master.body, ci.slave.body);
             if bodies[mb].rigid || bodies[sb].rigid {
                 for (side, contact) in [

@@ -53,12 +53,6 @@ const MULTIGRID: bool = true;
 /// moves the body freely until contact holds it.
 const FLOATING_STABILISATION: f64 = 1e-5;
 
-/// A face of a contact surface whose gap is at most this fraction of its
-/// size (√area) gets the spring of a face in contact although it carries
-/// no pressure yet: bodies meshed touching would otherwise be free in
-/// their first step.
-const TOUCHING_GAP: f64 = 1e-6;
-
 /// How the preconditioner matrix of a component is inverted.
 pub enum Factor {
     /// One IC(0) forward and backward sweep (the default).
@@ -366,18 +360,7 @@ impl SegregatedOperator {
             let eps = ci.normal_penalty();
             let eps_t = ci.tangential_penalty();
             let (mb, sb) = (ci.master.body, ci.slave.body);
-            let beta = |side: &crate::contact_coupling::ContactSide,
-                        contact: &contact_force::SurfaceContact,
-                        i: usize| {
-                let c = contact.contact_fraction.get(i).copied().unwrap_or(0.0);
-                let g = contact.gap.get(i).copied().unwrap_or(f64::INFINITY);
-                if c == 0.0 && g.is_finite() && g <= TOUCHING_GAP * side.surface.face_mag[i].sqrt()
-                {
-                    1.0
-                } else {
-                    c
-                }
-            };
+            let beta = crate::contact_coupling::linearised_fraction;
             if bodies[mb].rigid || bodies[sb].rigid {
                 for (side, contact) in [
                     (&ci.master, &ci.tractions.master),

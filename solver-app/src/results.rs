@@ -136,21 +136,20 @@ fn contact_labels(contacts: &ContactSet) -> Vec<String> {
         .collect()
 }
 
-/// Patches of deformable bodies with a `rigid-motion` condition that has a
-/// rotation: (body index, patch index, `"<body>/<patch>"`). Their moments
-/// close the history rows.
+/// Patches with a `rigid-motion` condition that has a rotation, of
+/// deformable and rigid bodies: (body index, patch index,
+/// `"<body>/<patch>"`). Their moments close the history rows.
 pub fn moment_patches(bodies: &[Body]) -> Vec<(usize, usize, String)> {
     reported_patches(bodies)
         .into_iter()
         .filter(|&(bi, p, _)| {
-            !bodies[bi].rigid
-                && matches!(
-                    bodies[bi].patch_specs[p],
-                    Some(crate::case::BoundarySpec::RigidMotion {
-                        rotation: Some(_),
-                        ..
-                    })
-                )
+            matches!(
+                bodies[bi].patch_specs[p],
+                Some(crate::case::BoundarySpec::RigidMotion {
+                    rotation: Some(_),
+                    ..
+                })
+            )
         })
         .collect()
 }
@@ -159,9 +158,12 @@ pub fn moment_patches(bodies: &[Body]) -> Vec<(usize, usize, String)> {
 /// the point of its axis at time `t` (the rotation `origin` moved by the
 /// translation): Σ (x_f − o) × F_f over the patch faces, x_f the prescribed
 /// current face centre and F_f the face force of [`patch_reaction`] (the
-/// twisting torque of thesis §5.3.5 is its component along the axis).
-/// Zero for other patches.
-pub fn patch_moment(body: &Body, p: usize, t: f64) -> Vector {
+/// twisting torque of thesis §5.3.5 is its component along the axis). A
+/// rigid body's patch takes minus the moment of the contact forces on it,
+/// shared by area as [`patch_reaction`] shares the force. Zero for other
+/// patches.
+pub fn patch_moment(bodies: &[Body], bi: usize, p: usize, t: f64, contacts: &ContactSet) -> Vector {
+    let body = &bodies[bi];
     let Some(crate::case::BoundarySpec::RigidMotion {
         translation,
         rotation: Some(r),
@@ -169,14 +171,14 @@ pub fn patch_moment(body: &Body, p: usize, t: f64) -> Vector {
     else {
         return Vector::zeros();
     };
-    if body.rigid {
-        return Vector::zeros();
-    }
     let tr = translation
         .as_ref()
         .map(|x| Vector::from(x.at(t)))
         .unwrap_or_else(Vector::zeros);
     let o = Vector::from(r.origin) + tr;
+    if body.rigid {
+        return rigid_patch_moment(bodies, bi, p, o, contacts);
+    }
     let ni = body.mesh.n_internal_faces();
     let fv_discretise::PatchCondition::Displacement(u) = &body.momentum.conditions[p] else {
         return Vector::zeros();
@@ -189,6 +191,37 @@ pub fn patch_moment(body: &Body, p: usize, t: f64) -> Vector {
             (x - o).cross(&body.momentum.face_force[f - ni])
         })
         .sum()
+}
+
+/// The share of patch `p` of the moment about `o` that holds rigid body
+/// `bi` against its contacts: minus Σ (x_f − o) × F_f over the faces of
+/// the deformable sides opposite, F_f the force on the rigid body there
+/// (the deformable face's traction reversed), in proportion to the patch's
+/// area among the body's reported patches.
+fn rigid_patch_moment(
+    bodies: &[Body],
+    bi: usize,
+    p: usize,
+    o: Vector,
+    contacts: &ContactSet,
+) -> Vector {
+    let mut on_body = Vector::zeros();
+    for c in &contacts.interfaces {
+        for (this, other, tractions) in [
+            (&c.master, &c.slave, &c.tractions.slave),
+            (&c.slave, &c.master, &c.tractions.master),
+        ] {
+            if this.body != bi || bodies[other.body].rigid {
+                continue;
+            }
+            let s = &other.surface;
+            for f in 0..s.n_faces() {
+                let force = -tractions.traction(f) * s.face_mag[f];
+                on_body += (s.face_centres[f] - o).cross(&force);
+            }
+        }
+    }
+    (-on_body * rigid_patch_share(&bodies[bi], p)).map(|v| v + 0.0)
 }
 
 /// One history row, in the order of [`history_columns`].
@@ -211,7 +244,7 @@ pub fn history_row(
         row.push(c.stats.contact_area);
     }
     for (bi, p, _) in moment_patches(bodies) {
-        let m = patch_moment(&bodies[bi], p, time);
+        let m = patch_moment(bodies, bi, p, time, contacts);
         row.extend([m.x, m.y, m.z]);
     }
     row
@@ -278,6 +311,13 @@ pub fn patch_reaction(bodies: &[Body], bi: usize, p: usize, contacts: &ContactSe
             on_body -= c.stats.master_force;
         }
     }
+    // + 0: no −0 in the tables
+    (-on_body * rigid_patch_share(body, p)).map(|v| v + 0.0)
+}
+
+/// The share of a rigid body's reported patch `p` in what holds the body:
+/// its area over theirs (0 without reported patches).
+fn rigid_patch_share(body: &Body, p: usize) -> f64 {
     let area = |q: usize| -> f64 {
         body.mesh.patches[q]
             .faces()
@@ -286,10 +326,9 @@ pub fn patch_reaction(bodies: &[Body], bi: usize, p: usize, contacts: &ContactSe
     };
     let total: f64 = body.reported_patches().map(area).sum();
     if total > 0.0 {
-        // + 0: no −0 in the tables
-        (-on_body * (area(p) / total)).map(|v| v + 0.0)
+        area(p) / total
     } else {
-        Vector::zeros()
+        0.0
     }
 }
 

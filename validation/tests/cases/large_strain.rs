@@ -1030,6 +1030,75 @@ type = "empty"
     );
 }
 
+/// The tube of [`pressurised_neo_hookean_tube_in_one_increment`] inflated
+/// instead by a `normal-displacement` of its inner face to the radius the
+/// pressure 0.15 gives (r_i 1 → 1.556), in one increment with no cut-back:
+/// the outer radius and the inner face's reaction, p r_i t along x for the
+/// quarter, as the closed form says. Before the first iterate moved the
+/// kinematic faces' prescribed part (`conditions_at` in newton/start.rs), the
+/// step of a `normal-displacement` was not in it: the start state was judged
+/// at the step's end, inverted, and a sphere inflated so in two steps
+/// failed at every cut-back. Measured: 3 Newton iterations, r_o 2.396105
+/// against 2.396368 (−0.07 % of u_o), F_x 0.0233237 against 0.0233343.
+#[test]
+fn neo_hookean_tube_inflated_by_its_inner_face_in_one_step() {
+    let (e, nu, p) = (1.0f64, 0.3f64, 0.15);
+    let mu = e / (2.0 * (1.0 + nu));
+    let bulk = e / (3.0 * (1.0 - 2.0 * nu));
+    let (ra, rb) = validation::analytical::neo_hookean_pressurised_tube(mu, bulk, 1.0, 2.0, p);
+    let case = format!(
+        r#"
+title = "tube"
+[analysis]
+strain = "large"
+[time]
+end = 1.0
+steps = 1
+[[body]]
+name = "tube"
+mesh = {{ generator = "annulus", r_inner = 1.0, r_outer = 2.0, theta0 = 0, theta1 = 90, z1 = 0.1, cells = [20, 30, 1] }}
+material = {{ model = "neo-hookean", E = {e}, nu = {nu} }}
+[body.boundary.inner]
+type = "normal-displacement"
+value = {{ table = [[0.0, 0.0], [1.0, {}]] }}
+[body.boundary.start]
+type = "symmetry"
+[body.boundary.end]
+type = "symmetry"
+[body.boundary.zmin]
+type = "empty"
+[body.boundary.zmax]
+type = "empty"
+"#,
+        1.0 - ra
+    );
+    let out = run_toml_edited(&case, std::path::Path::new("."), true, |_| {});
+    assert!(out.converged, "{:?}", out.failure);
+    let ro = patch_point_radius(&out.bodies[0], "outer");
+    let Some(inner) = out.bodies[0].mesh.patch_index("inner") else {
+        panic!("no patch inner")
+    };
+    let f = solver_app::results::patch_reaction(&out.bodies, 0, inner, &out.contacts);
+    let exact = p * ra * 0.1;
+    let err_o = (ro - rb) / (rb - 2.0);
+    eprintln!(
+        "tube inflated by its inner face: {} Newton iterations, r_o {ro:.6} against {rb:.6} ({:.3} % of u_o), F_x {:.7} against {exact:.7}",
+        out.summary.outer_iterations,
+        100.0 * err_o,
+        f.x
+    );
+    assert!(
+        err_o.abs() < 2e-3,
+        "r_o off by {:.3} % of u_o",
+        100.0 * err_o
+    );
+    assert!(
+        (f.x / exact - 1.0).abs() < 2e-3,
+        "F_x {} against {exact}",
+        f.x
+    );
+}
+
 /// An elastoplastic bar (E = 200,000, σ_Y = 250) turned rigidly by a
 /// `rigid-motion` clamp, 0.3 rad in one increment and 90° in ten: it must
 /// stay unstressed and follow the rotation. From rest (the cells by the

@@ -781,9 +781,16 @@ fn run_case_noting(
                     // is written as increment k at its own time, with its
                     // contact surfaces and tractions (the failed attempt
                     // left its own behind)
+                    // the conditions of t0: the failed attempt left its own
+                    // (a sphere inflated by a normal-displacement was
+                    // written at t0 with the inner face of the failed
+                    // attempt's end, its reaction 2.3e9 against 8.4e4)
+                    for b in bodies.iter_mut() {
+                        b.refresh_conditions(t0);
+                    }
                     if let Err(e) = solver.refresh_restored(&mut bodies, &mut contacts) {
                         log.warn(&format!(
-                            "increment {k}: the contact state of t = {} could not be evaluated for the results: {e}",
+                            "increment {k}: the state of t = {} could not be evaluated for the results: {e}",
                             Num(t0)
                         ));
                     }

@@ -1792,6 +1792,49 @@ fn a_failed_contact_run_writes_its_last_sub_step_throughout() {
     }
 }
 
+/// The block of [`BLOCK_PUSHED_PAST_FRICTION`] pressed further during its
+/// failing increment (the `normal-displacement` ramps on): the sub-step
+/// written is at its own time, with that time's prescribed face, so the
+/// pressing face's reaction is the floor's normal force. The failed
+/// attempt's conditions were left in place: a reaction of 501,360 against
+/// N = 333,076 (found by a probe, 2026-12-01, on a sphere inflated by a
+/// `normal-displacement`: 2.3e9 against 8.4e4). Measured: 333,091.
+#[test]
+fn a_failed_run_writes_its_last_sub_step_with_that_time_s_conditions() {
+    for (method, max_outer) in [("newton-krylov", ""), ("segregated", "max_outer = 3000\n")] {
+        let case = BLOCK_PUSHED_PAST_FRICTION
+            .replace(
+                "[[0.0, 0.0], [1.0, -1e-3]]",
+                "[[0.0, 0.0], [1.0, -1e-3], [2.0, -2e-3]]",
+            )
+            .replace("2.066e6", "6e6")
+            .replace(
+                "steps = 2\n",
+                &format!("steps = 2\n[solver]\nnonlinear = \"{method}\"\n{max_outer}"),
+            );
+        let dir = tempfile::tempdir().unwrap();
+        let (code, outdir, err) = run_quietly(dir.path(), case.as_bytes());
+        assert_eq!(code, 1, "{method}: {err}");
+        assert!(err.contains("is written as increment 2"), "{method}: {err}");
+        let hist = std::fs::read_to_string(outdir.join("pushed/history.csv")).unwrap();
+        let last: Vec<f64> = hist
+            .lines()
+            .last()
+            .unwrap()
+            .split(',')
+            .map(|x| x.parse().unwrap())
+            .collect();
+        // time, iterations, residual, ymax Fx Fy Fz, normal force, area
+        assert!(last[0] > 1.0 && last[0] < 2.0, "{method}: t = {}", last[0]);
+        assert!(
+            (last[4] + last[6]).abs() < 2e-3 * last[6],
+            "{method}: reaction {} against N {}",
+            last[4],
+            last[6]
+        );
+    }
+}
+
 /// `[output] fields` without `von_mises` on a contact case: the results
 /// writer indexed the von Mises stress it had not formed for the contact
 /// patches' cells and panicked, and the run lost its `summary.json`

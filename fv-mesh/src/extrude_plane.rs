@@ -121,6 +121,13 @@ pub fn extrude_plane(coords: &[Vector], plane: &PlaneElements) -> Result<Extrude
 
     let mut boundary_groups = Vec::new();
     for (name, segments) in &plane.edges {
+        // the extrusion names its two caps so: a curve of that name made a
+        // second patch of the name, which a case's condition did not reach
+        if name == FRONT_AND_BACK {
+            return Err(format!(
+                "a physical curve is named '{FRONT_AND_BACK}', the name of the patch the extrusion of a plane mesh gives its front and back faces; rename the curve"
+            ));
+        }
         let mut faces = Vec::with_capacity(segments.len());
         for &[a, b] in segments {
             let (a, b) = (index[a as usize], index[b as usize]);

@@ -13,7 +13,7 @@ use std::path::Path;
 use mshio::ElementType;
 
 use crate::extrude_plane::{extrude_plane, PlaneElements};
-use crate::{CellShape, CellType, CellZone, MeshError, PolyMesh, Vector};
+use crate::{CellShape, CellType, CellZone, FaceZone, MeshError, PolyMesh, Vector};
 
 /// Reads a Gmsh MSH 4.1 file (ascii or binary) into a [`PolyMesh`].
 ///
@@ -394,6 +394,14 @@ fn parse_physical_names(
             .strip_prefix('"')
             .and_then(|s| s.strip_suffix('"'))
             .ok_or_else(bad)?;
+        // read lossily above: a name that is not UTF-8 would become one
+        // that no case file can name
+        if name.contains(char::REPLACEMENT_CHARACTER) {
+            return Err((
+                line_no,
+                format!("$PhysicalNames: the name '{name}' is not UTF-8 text; save the mesh with names in UTF-8"),
+            ));
+        }
         names.insert((dim, tag), name.to_string());
         read += 1;
     }
@@ -859,6 +867,26 @@ fn assemble(
         },
         other => other,
     })?;
+    // a physical surface between two physical volumes lies on internal
+    // faces: kept as a face zone, the patch of that name where a body is
+    // cut out along it (`zone = ...`)
+    let mut face_zones: Vec<FaceZone> = Vec::new();
+    for f in 0..mesh.n_internal_faces() {
+        let mut key = mesh.face(f).to_vec();
+        key.sort_unstable();
+        key.dedup();
+        if let Some(&gi) = group_of.get(&key) {
+            let name = &boundary_groups[gi].0;
+            match face_zones.iter_mut().find(|z| &z.name == name) {
+                Some(z) => z.faces.push(f as u32),
+                None => face_zones.push(FaceZone {
+                    name: name.clone(),
+                    faces: vec![f as u32],
+                }),
+            }
+        }
+    }
+    mesh.face_zones = face_zones;
     mesh.cell_zones = zones
         .into_iter()
         .map(|(tag, cells)| CellZone {
@@ -1326,6 +1354,58 @@ $EndElements
     /// "bottom" (y = 0) and "right" (x = 2), the top edges in no group,
     /// physical surface "plate".
     const PLANE: &str = include_str!("../tests/data/plate_2d.msh");
+
+    /// Two hexahedra side by side whose shared face is the physical
+    /// surface "mid" (tests/data/two_cubes_mid.geo): the face is internal,
+    /// kept as a face zone, and a body cut out of either cube has it as its
+    /// patch "mid", not in `defaultFaces` (found by a probe, 2026-12-01:
+    /// the name a user gave an interface between two physical volumes was
+    /// lost, and the contact naming it refused).
+    #[test]
+    fn a_physical_surface_between_volumes_names_the_cut() {
+        let m = read(include_str!("../tests/data/two_cubes_mid.msh")).expect("reads");
+        assert_eq!(m.n_internal_faces(), 1);
+        assert_eq!(m.face_zones.len(), 1);
+        assert_eq!(m.face_zones[0].name, "mid");
+        assert_eq!(m.face_zones[0].faces, [0]);
+        for cell in [0u32, 1] {
+            let one = m.subset(&[cell]).expect("subset");
+            let names: Vec<&str> = one.patches.iter().map(|p| p.name.as_str()).collect();
+            assert!(names.contains(&"mid"), "{names:?}");
+            // the cube's four faces in no group, not the cut face
+            let d = one.patch_index("defaultFaces").expect("defaultFaces");
+            assert_eq!(one.patches[d].size, 4, "{names:?}");
+            let mid = one.patch_index("mid").expect("mid");
+            assert_eq!(one.patches[mid].size, 1);
+            // the cut face points out of the cube that keeps it
+            let g = MeshGeometry::new(&one).expect("geometry");
+            let f = one.patches[mid].start;
+            let out = g.face_centres[f] - g.cell_centres[0];
+            assert!(out.dot(&g.face_normal(f)) > 0.0);
+        }
+    }
+
+    /// A physical curve named as the extrusion's caps: two patches of one
+    /// name, the case's condition reaching the first only (found by a
+    /// probe, 2026-12-01). Refused, naming the file.
+    #[test]
+    fn a_curve_named_front_and_back_is_refused() {
+        let bad = PLANE.replace("\"right\"", &format!("\"{FRONT_AND_BACK}\""));
+        assert_ne!(bad, PLANE);
+        let e = read(&bad).expect_err("reserved name");
+        assert!(e.to_string().contains("rename the curve"), "{e}");
+    }
+
+    /// A physical name in Latin-1 (found by a probe, 2026-12-01): it
+    /// became a patch name no case could type.
+    #[test]
+    fn a_physical_name_that_is_not_utf8_is_refused() {
+        let mut bytes = PLANE.as_bytes().to_vec();
+        let at = PLANE.find("\"right\"").expect("right") + 2;
+        bytes[at] = 0xe4; // 'ä' in Latin-1
+        let e = read_gmsh_bytes(&bytes, Path::new("test.msh")).expect_err("not UTF-8");
+        assert!(e.to_string().contains("not UTF-8"), "{e}");
+    }
 
     #[test]
     fn a_plane_mesh_is_extruded_one_cell_thick() {

@@ -31,6 +31,21 @@ pub struct CellZone {
     pub cells: Vec<u32>,
 }
 
+/// A patch being gathered by [`PolyMesh::subset`]: name, source type and
+/// its faces as (owner, points).
+type PatchFaces = (String, String, Vec<(u32, Vec<u32>)>);
+
+/// A named set of internal faces (a Gmsh physical surface between two
+/// physical volumes): the faces become a patch of that name where
+/// [`PolyMesh::subset`] cuts the mesh along them.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct FaceZone {
+    /// Zone name.
+    pub name: String,
+    /// Internal face indices.
+    pub faces: Vec<u32>,
+}
+
 /// Polyhedral mesh: points, faces, owner/neighbour and patches.
 ///
 /// Invariants (checked by [`PolyMesh::new`]): internal faces come first,
@@ -54,6 +69,8 @@ pub struct PolyMesh {
     pub n_cells: usize,
     /// Cell zones, if the source has any.
     pub cell_zones: Vec<CellZone>,
+    /// Named sets of internal faces, if the source has any.
+    pub face_zones: Vec<FaceZone>,
     /// Standard cell shapes (when the mesh was built from them), for output.
     pub cell_shapes: Option<Vec<CellShape>>,
 }
@@ -89,6 +106,7 @@ impl PolyMesh {
             patches,
             n_cells,
             cell_zones: Vec::new(),
+            face_zones: Vec::new(),
             cell_shapes: None,
         };
         mesh.check_addressing()?;
@@ -433,8 +451,9 @@ impl PolyMesh {
     }
 
     /// Extracts the cells `cells` (sorted or not) as a new mesh. Faces between
-    /// the subset and the rest become boundary faces of a patch
-    /// `defaultFaces`; patches left without faces are dropped.
+    /// the subset and the rest become boundary faces of the patch named by
+    /// their [`FaceZone`], or else of a patch `defaultFaces`; patches left
+    /// without faces are dropped.
     pub fn subset(&self, cells: &[u32]) -> Result<PolyMesh, MeshError> {
         let mut new_of = vec![u32::MAX; self.n_cells];
         for (i, &c) in cells.iter().enumerate() {
@@ -478,81 +497,102 @@ impl PolyMesh {
             match (o != u32::MAX, n != u32::MAX) {
                 (true, true) => {
                     if o < n {
-                        internal.push((o, n, map_face(f, false, &mut points)));
+                        internal.push((o, n, map_face(f, false, &mut points), f));
                     } else {
-                        internal.push((n, o, map_face(f, true, &mut points)));
+                        internal.push((n, o, map_face(f, true, &mut points), f));
                     }
                 }
-                (true, false) => cut.push((o, map_face(f, false, &mut points))),
-                (false, true) => cut.push((n, map_face(f, true, &mut points))),
+                (true, false) => cut.push((o, map_face(f, false, &mut points), f)),
+                (false, true) => cut.push((n, map_face(f, true, &mut points), f)),
                 _ => {}
+            }
+        }
+        // the face zone of every internal face in one
+        let mut zone_of = vec![u32::MAX; ni];
+        for (z, zone) in self.face_zones.iter().enumerate() {
+            for &f in &zone.faces {
+                if let Some(slot) = zone_of.get_mut(f as usize) {
+                    *slot = z as u32;
+                }
             }
         }
         internal.sort_by_key(|t| (t.0, t.1));
         let mut faces = Vec::new();
         let mut owner = Vec::new();
         let mut neighbour = Vec::new();
-        for (o, n, fp) in internal {
+        let mut face_zones: Vec<FaceZone> = self
+            .face_zones
+            .iter()
+            .map(|z| FaceZone {
+                name: z.name.clone(),
+                faces: Vec::new(),
+            })
+            .collect();
+        for (o, n, fp, f) in internal {
+            if let Some(z) = face_zones.get_mut(zone_of[f] as usize) {
+                z.faces.push(faces.len() as u32);
+            }
             faces.push(fp);
             owner.push(o);
             neighbour.push(n);
         }
-        let mut patches = Vec::new();
-        let mut default_existing: Option<usize> = None;
-        for p in &self.patches {
-            let start = faces.len();
-            for f in p.faces() {
-                let o = new_of[self.owner[f] as usize];
-                if o != u32::MAX {
-                    faces.push(map_face(f, false, &mut points));
-                    owner.push(o);
+        face_zones.retain(|z| !z.faces.is_empty());
+        // the patches' faces, then the cut faces to their zone's patch or
+        // to defaultFaces (last when it takes any); empty patches dropped
+        let mut lists: Vec<PatchFaces> = self
+            .patches
+            .iter()
+            .map(|p| {
+                let kept = p
+                    .faces()
+                    .filter_map(|f| {
+                        let o = new_of[self.owner[f] as usize];
+                        (o != u32::MAX).then(|| (o, map_face(f, false, &mut points)))
+                    })
+                    .collect();
+                (p.name.clone(), p.source_type.clone(), kept)
+            })
+            .collect();
+        const DEFAULT: &str = "defaultFaces";
+        let mut cut_to_default = false;
+        for (o, fp, f) in cut {
+            let name = match self.face_zones.get(zone_of[f] as usize) {
+                Some(z) => z.name.as_str(),
+                None => {
+                    cut_to_default = true;
+                    DEFAULT
                 }
-            }
-            if p.name == "defaultFaces" {
-                default_existing = Some(patches.len());
-            }
-            if faces.len() > start || p.name == "defaultFaces" {
-                patches.push(Patch {
-                    name: p.name.clone(),
-                    start,
-                    size: faces.len() - start,
-                    source_type: p.source_type.clone(),
-                });
+            };
+            match lists.iter_mut().find(|l| l.0 == name) {
+                Some(l) => l.2.push((o, fp)),
+                None => lists.push((name.to_owned(), "patch".into(), vec![(o, fp)])),
             }
         }
-        if !cut.is_empty() {
-            // append the cut faces to defaultFaces (moving it last if it exists)
-            let mut extra_faces = Vec::new();
-            let mut extra_owner = Vec::new();
-            if let Some(di) = default_existing {
-                let p = patches.remove(di);
-                extra_faces.extend(faces.drain(p.start..p.start + p.size));
-                extra_owner.extend(owner.drain(p.start..p.start + p.size));
-                let mut s = neighbour.len();
-                for q in patches.iter_mut() {
-                    q.start = s;
-                    s += q.size;
-                }
+        if cut_to_default {
+            if let Some(d) = lists.iter().position(|l| l.0 == DEFAULT) {
+                let l = lists.remove(d);
+                lists.push(l);
             }
-            for (o, fp) in cut {
-                extra_faces.push(fp);
-                extra_owner.push(o);
+        }
+        let mut patches = Vec::new();
+        for (name, source_type, list) in lists {
+            if list.is_empty() {
+                continue;
             }
             patches.push(Patch {
-                name: "defaultFaces".into(),
+                name,
                 start: faces.len(),
-                size: extra_faces.len(),
-                source_type: "patch".into(),
+                size: list.len(),
+                source_type,
             });
-            faces.extend(extra_faces);
-            owner.extend(extra_owner);
-        } else if let Some(di) = default_existing {
-            if patches[di].size == 0 {
-                patches.remove(di);
+            for (o, fp) in list {
+                faces.push(fp);
+                owner.push(o);
             }
         }
         let mut mesh = PolyMesh::new(points, faces, owner, neighbour, patches)?;
         mesh.n_cells = cells.len();
+        mesh.face_zones = face_zones;
         if let Some(shapes) = &self.cell_shapes {
             let shapes: Vec<CellShape> = cells
                 .iter()

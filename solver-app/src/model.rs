@@ -5,6 +5,7 @@ mod restart;
 use crate::case::{
     BodySpec, BoundarySpec, Case, InputError, MaterialModel, MaterialSpec, StrainKind,
 };
+use crate::words::{count, Num};
 use fv_discretise::{wedge_rotations, Inertia, PatchCondition, SolidMomentum, StressLaw};
 use fv_materials::{
     Hardening, LargeStrainMaterial, LinearElastic, NeoHookean, NeoHookeanPlastic, PlaneStress,
@@ -856,6 +857,18 @@ fn build_body(
                 spec.name
             ));
         }
+    }
+    if let (false, (pairs @ 1.., Some(x))) =
+        (spec.rigid, fv_mesh::coincident_boundary_faces(&mesh, &geom))
+    {
+        setup_notes.push(format!(
+            "body '{}': {} of boundary faces lie on each other (one at ({}, {}, {})): a crack inside the body, where cells meet without sharing points (duplicated nodes, or parts not joined: in Gmsh, Coherence or BooleanFragments); the body can open there",
+            spec.name,
+            count(pairs, "pair", "pairs"),
+            Num(x.x),
+            Num(x.y),
+            Num(x.z)
+        ));
     }
     if case.analysis.kind == crate::case::AnalysisKind::Dynamic && !spec.rigid {
         // rho is required on deformable bodies of dynamic analyses (checked

@@ -777,11 +777,9 @@ impl SegregatedSolver {
                                 body: b.name.clone(),
                                 axis: ["x", "y", "z"][c],
                                 part: format!(
-                                    " (face-connected region {} of {}, {} cells: a mesh of parts that are not joined — in Gmsh, BooleanFragments or Coherence — or a part that needs a condition of its own; zone = \"region{}\" makes it a body of its own)",
-                                    k + 1,
+                                    " (face-connected region{k} of {}, {} cells: a mesh of parts that are not joined — in Gmsh, BooleanFragments or Coherence — or a part that needs a condition of its own; zone = \"region{k}\" makes it a body of its own in a mesh without physical volumes or cellZones, in one with them a physical volume of its own does)",
                                     all.len(),
                                     region.len(),
-                                    k + 1
                                 ),
                             });
                         }

@@ -389,10 +389,23 @@ fn tables<'a>(n: &Node<'a>, name: &str) -> Res<Vec<reader::Owned<'a>>> {
     Ok(items)
 }
 
+/// Longest `title` in bytes: the results file `<title>.xdmf` must fit a
+/// file name (255 bytes on the usual file systems).
+const MAX_TITLE_BYTES: usize = 240;
+
+/// Whether a body or patch name can head a column of `history.csv` as it
+/// is: no ',' or '"' (a comma in a name split the header, and `fvc plot`
+/// then took the file for truncated).
+pub(crate) fn column_safe(name: &str) -> bool {
+    !name.contains(',') && !name.contains('"')
+}
+
 /// `title`: non-empty and usable as a directory name.
 fn title(n: &Node<'_>) -> Res<String> {
     let s = n.nonempty_str()?;
-    let bad = if s.contains('/') || s.contains('\\') {
+    let bad = if s.len() > MAX_TITLE_BYTES {
+        Some("more than 240 bytes (the results files are named after it)")
+    } else if s.contains('/') || s.contains('\\') {
         Some("a path separator")
     } else if s == "." || s == ".." || s.contains("..") {
         Some("\"..\"")
@@ -415,9 +428,9 @@ fn body(n: &Node<'_>, dir: &Path) -> Res<BodySpec> {
     t.deny_unknown(keys::BODY)?;
     let name = t.need("name", |n| {
         let s = n.nonempty_str()?;
-        if s.contains('/') || s.chars().any(char::is_control) {
+        if s.contains('/') || s.chars().any(char::is_control) || !column_safe(s) {
             return Err(n.err(format!(
-                "a body name must not contain '/' or control characters, got {}",
+                "a body name must not contain '/', ',', '\"' or control characters (it heads the columns of history.csv), got {}",
                 n.raw()
             )));
         }
@@ -437,6 +450,11 @@ fn body(n: &Node<'_>, dir: &Path) -> Res<BodySpec> {
             let c = cond.node();
             if patch.trim().is_empty() {
                 return Err(c.err("empty patch name"));
+            }
+            if !column_safe(patch) {
+                return Err(c.err(format!(
+                    "patch name \"{patch}\" contains ',' or '\"', which would split its columns in history.csv; rename the patch (the mesh's physical group)"
+                )));
             }
             boundary.push((patch.to_owned(), boundary::boundary_condition(&c)?));
         }

@@ -45,13 +45,25 @@ pub fn check_initial_overlap(
             (&ci.slave, &ci.master, "slave"),
             (&ci.master, &ci.slave, "master"),
         ] {
-            let Some((f, x, depth)) = deepest_face_inside(inside, other, bodies) else {
-                continue;
-            };
+            let ib = &bodies[inside.body];
+            let (what, x, depth) =
+                if let Some((f, x, d)) = deepest_face_inside(inside, other, bodies) {
+                    let patch = &ib.mesh.patches[inside.patch].name;
+                    (format!("face {f} of '{}/{patch}'", ib.name), x, d)
+                } else if let Some((c, x, d)) = deepest_cell_inside(inside, other, bodies) {
+                    (format!("cell {c} of body '{}'", ib.name), x, d)
+                } else {
+                    continue;
+                };
             let b = &bodies[other.body];
             let whence = match depth {
                 Depth::Layer(layer) => format!(
-                    "in the cell layer {layer} below its patch '{}' (the search reaches about one cell layer into each body)",
+                    "{} below its patch '{}' (the search reaches about one cell layer into each body)",
+                    if layer == u8::MAX {
+                        format!("more than {} cell layers", REACHED_LAYERS + 1)
+                    } else {
+                        format!("in the cell layer {layer}")
+                    },
                     b.mesh.patches[other.patch].name
                 ),
                 Depth::Distance { depth, reach } => format!(
@@ -62,9 +74,7 @@ pub fn check_initial_overlap(
             return Err(case.source.error(
                 &format!("contact[{i}].{key}"),
                 format!(
-                    "the contact surfaces start overlapping deeper than the contact search reaches: face {f} of '{}/{}' (centre {:.4e}, {:.4e}, {:.4e}) lies inside body '{}', {whence}; move the bodies apart so that they overlap by less than a cell height, or start them apart and press them together",
-                    bodies[inside.body].name,
-                    bodies[inside.body].mesh.patches[inside.patch].name,
+                    "the contact surfaces start overlapping deeper than the contact search reaches: {what} (centre {:.4e}, {:.4e}, {:.4e}) lies inside body '{}', {whence}; move the bodies apart so that they overlap by less than a cell height, or start them apart and press them together",
                     x.x,
                     x.y,
                     x.z,
@@ -105,11 +115,42 @@ fn deepest_face_inside(
     other: &ContactSide,
     bodies: &[Body],
 ) -> Option<(usize, Vector, Depth)> {
+    deepest_point_inside(
+        &side.surface.face_centres,
+        mean_face_size(side),
+        other,
+        bodies,
+    )
+}
+
+/// The cell of `side`'s body whose centre lies inside the body of `other`
+/// out of the contact search's reach, as [`deepest_face_inside`] judges
+/// it: bodies placed through each other (one spanning y −0.001…0.499, the
+/// other 0…0.5), or on top of each other, have their contact faces each
+/// outside the other body, so the faces alone did not show it, and the run
+/// solved without contact force.
+fn deepest_cell_inside(
+    side: &ContactSide,
+    other: &ContactSide,
+    bodies: &[Body],
+) -> Option<(usize, Vector, Depth)> {
+    let centres = &bodies[side.body].geom.cell_centres;
+    deepest_point_inside(centres, mean_face_size(side), other, bodies)
+}
+
+/// The point of `centres` (on or in a body whose contact faces are
+/// `size` across) that lies deepest inside the body of `other` out of the
+/// search's reach: index, point and depth.
+fn deepest_point_inside(
+    centres: &[Vector],
+    size: f64,
+    other: &ContactSide,
+    bodies: &[Body],
+) -> Option<(usize, Vector, Depth)> {
     let b = &bodies[other.body];
     let mesh = &b.mesh;
     let (cf_off, cf) = mesh.cell_faces();
     let layers = cell_layers(mesh, other.patch, &cf_off, &cf);
-    let centres = &side.surface.face_centres;
     if centres.is_empty() {
         return None;
     }
@@ -156,7 +197,7 @@ fn deepest_face_inside(
     }
     // within the layers: below the nearest face of the other patch, along
     // its normal, farther than the two extrusions reach
-    let reach = mean_face_size(side) + mean_face_size(other);
+    let reach = size + mean_face_size(other);
     let o = &other.surface;
     (0..centres.len())
         .filter(|&f| inside[f])

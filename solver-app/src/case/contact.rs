@@ -206,6 +206,11 @@ fn body_patch(n: &Node<'_>, bodies: &[&str]) -> Res<(String, String)> {
     if body.is_empty() || patch.is_empty() || patch.contains('/') {
         return Err(n.err(format!("expected \"<body>/<patch>\", got \"{s}\"")));
     }
+    if !super::column_safe(patch) {
+        return Err(n.err(format!(
+            "patch name \"{patch}\" contains ',' or '\"', which would split its column in history.csv; rename the patch (the mesh's physical group)"
+        )));
+    }
     if !bodies.contains(&body) {
         return Err(n.err(format!("unknown body \"{body}\"; bodies: {}", list(bodies))));
     }

@@ -282,6 +282,49 @@ fn contact_names_unknown_body() {
     );
 }
 
+/// A ',' or '"' in a body or patch name would split the columns of
+/// history.csv, and `fvc plot` then took the file for truncated (found by
+/// a probe, 2026-12-01): refused at the key that gives the name.
+#[test]
+fn names_that_would_split_the_history_columns() {
+    let text = edit("name = \"block\"", "name = \"bl,ock\"");
+    check(
+        &parse_err(&text),
+        Some(line_of(&text, "bl,ock")),
+        Some("body[0].name"),
+        "must not contain '/', ','",
+    );
+    let text = edit("[body.boundary.ymin]", "[body.boundary.\"y,min\"]");
+    let e = parse_err(&text);
+    assert!(e.message.contains("history.csv"), "{e}");
+    let text = edit("slave = \"block/ymin\"", "slave = \"block/y\\\"min\"");
+    check(
+        &parse_err(&text),
+        Some(line_of(&text, "slave = ")),
+        Some("contact[0].slave"),
+        "history.csv",
+    );
+}
+
+/// A title the results files cannot be named after: `check` passed a
+/// 300-byte title that `run` then could not use (found by a probe).
+#[test]
+fn a_title_too_long_for_a_file_name() {
+    let long = "t".repeat(241);
+    let text = edit("title = \"base\"", &format!("title = \"{long}\""));
+    check(
+        &parse_err(&text),
+        Some(1),
+        Some("title"),
+        "more than 240 bytes",
+    );
+    let fits = edit(
+        "title = \"base\"",
+        &format!("title = \"{}\"", "t".repeat(240)),
+    );
+    assert!(parse_case(&fits, Path::new("case.toml")).is_ok());
+}
+
 /// Contact between two patches of one body is refused (not a feature
 /// yet): the message names the `[[contact]]` and the slave's line.
 #[test]

@@ -1195,8 +1195,18 @@ fn a_part_of_a_body_held_by_nothing_is_refused() {
     let (code, _, err) = run_quietly(dir.path(), case.as_bytes());
     assert_eq!(code, 2, "{err}");
     assert!(
-        err.contains("region 2 of 2") && err.contains("not held in the x direction"),
+        err.contains("region1 of 2")
+            && err.contains("zone = \"region1\"")
+            && err.contains("not held in the x direction"),
         "{err}"
+    );
+    // the two cubes meet on a face each, at x = 0.5, without sharing its
+    // points: a crack, which the log names (`fvc check` too)
+    let (code, out, err) = fvc(&["check", dir.path().join("case.toml").to_str().unwrap()]);
+    let all = format!("{out}{err}");
+    assert!(
+        all.contains("1 pair of boundary faces lie on each other") && all.contains("(0.5, "),
+        "{code}: {all}"
     );
 }
 
@@ -1345,6 +1355,22 @@ fn surfaces_overlapping_beyond_the_search_are_refused() {
     );
     let force = first_contact_force(dir.path(), &overlapping_blocks(0.15), "overlap");
     assert!(force > 7.0 && force < 8.3, "normal force {force}");
+    // placed through each other (the upper spans y −0.001…0.999) or on top
+    // of each other: each contact surface lies outside the other body, so
+    // the faces alone did not show it and the run solved with no contact
+    // force (found by a probe, 2026-12-01); the cells show it
+    for overlap in [1.001, 1.0] {
+        expect_input_error(
+            dir.path(),
+            overlapping_blocks(overlap).as_bytes(),
+            &[
+                "contact[0].",
+                "start overlapping deeper than the contact search reaches",
+                "cell ",
+                "lies inside body",
+            ],
+        );
+    }
 }
 
 /// A rigid floor of one cell layer (0.65 high) whose top starts 0.45

@@ -251,6 +251,9 @@ fn run_case_noting(
                 .join(&case.title),
         };
         std::fs::create_dir_all(&dir).map_err(|e| unwritable(case, opts, &dir, &e))?;
+        if opts.restart.is_none() {
+            remove_stale_plots(&dir);
+        }
         Some(dir)
     };
     let signature = crate::restart::case_signature(&bodies, &contacts);
@@ -544,7 +547,10 @@ fn run_case_noting(
                 restore_start(&mut bodies, &mut contacts);
                 cuts += 1;
                 converged_in_a_row = 0;
-                h *= 0.5;
+                // half the step that failed: one clipped at the increment's
+                // end is shorter than h, and halving h repeated it as it
+                // was (a probe's 0.0875 → 0.1 three times)
+                h = 0.5 * (t1 - t0);
                 log.warn(&format!(
                     "increment {k}: step t = {} → {} failed ({why}); redone in steps of {}",
                     Num(t0),
@@ -1196,4 +1202,22 @@ fn restore_start(bodies: &mut [Body], contacts: &mut ContactSet) {
         b.restore_start();
     }
     contacts.restore_start();
+}
+
+/// A new run into a results folder takes away the PNG files an earlier
+/// `fvc plot` left in its `plots/` (they showed the earlier run beside
+/// the new results); other files stay.
+fn remove_stale_plots(dir: &Path) {
+    let plots = dir.join("plots");
+    let Ok(entries) = std::fs::read_dir(&plots) else {
+        return;
+    };
+    for e in entries.flatten() {
+        let p = e.path();
+        if p.extension().is_some_and(|x| x == "png") {
+            let _ = std::fs::remove_file(&p);
+        }
+    }
+    // only if empty now
+    let _ = std::fs::remove_dir(&plots);
 }

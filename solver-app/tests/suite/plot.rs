@@ -276,3 +276,29 @@ fn a_folder_that_is_not_a_results_folder_is_refused_with_exit_2() {
     assert_eq!(code, 2);
     assert!(err.contains(&format!("try {}", res.display())), "{err}");
 }
+
+/// A new run into a folder that an earlier run's `fvc plot` filled: the
+/// old PNGs showed the earlier run beside the new results (found by a
+/// probe, 2026-12-01). They go; a user's own file in `plots/` stays.
+#[test]
+fn a_new_run_takes_away_the_plots_of_the_last() {
+    let tmp = tempfile::tempdir().unwrap();
+    let res = run_punch(tmp.path());
+    let (code, _, err) = plot(&res);
+    assert_eq!(code, 0, "{err}");
+    let plots = res.join("plots");
+    let pngs = |d: &Path| {
+        std::fs::read_dir(d)
+            .map(|r| {
+                r.flatten()
+                    .filter(|e| e.path().extension().is_some_and(|x| x == "png"))
+                    .count()
+            })
+            .unwrap_or(0)
+    };
+    assert!(pngs(&plots) > 0);
+    std::fs::write(plots.join("notes.txt"), "mine").unwrap();
+    run_punch(tmp.path());
+    assert_eq!(pngs(&plots), 0);
+    assert!(plots.join("notes.txt").exists());
+}

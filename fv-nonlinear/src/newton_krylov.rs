@@ -469,6 +469,15 @@ impl NewtonKrylov {
         problem.accept();
         let mut fnorm = norm(&self.f);
         let mut reference = problem.residual_reference();
+        // an overflowed start (a state grown without bound) has an
+        // infinite reference, and inf ≤ tolerance × inf passed it as
+        // converged with 0 iterations (a probe's unstable dynamic run, its
+        // displacements at 1e150, went on "converged" for 70 increments)
+        if !(fnorm.is_finite() && reference.is_finite()) {
+            return Err(NewtonError::Start(Inadmissible(format!(
+                "the residual at the start is not finite (norm {fnorm:e}, force scale {reference:e}): the state has grown without bound"
+            ))));
+        }
         let mut forcing = Forcing::new(params.forcing);
         let mut history = NonMonotone::new(
             params.line_search.window,

@@ -3,7 +3,9 @@
 //! an obstacle by a penalty (a contact active set, nonsmooth), both
 //! preconditioned by the tridiagonal Laplacian as the finite-volume solver
 //! is by its segregated operator.
-use fv_nonlinear::{Frozen, Inadmissible, NewtonKrylov, NewtonParams, NonlinearProblem};
+use fv_nonlinear::{
+    Frozen, Inadmissible, NewtonError, NewtonKrylov, NewtonParams, NonlinearProblem,
+};
 
 /// Solves the tridiagonal system (−1, d_i, −1) z = r (Thomas algorithm).
 fn tridiagonal(diag: &[f64], r: &[f64], z: &mut [f64], work: &mut [f64]) {
@@ -98,6 +100,28 @@ fn bratu_converges_quadratically_to_the_lower_branch() {
     let mid = 2.0 * (theta / 4.0).cosh().ln();
     let got = x[n / 2 - 1].max(x[n / 2]);
     assert!((got - mid).abs() < 1e-4 * mid, "u(1/2) {got} against {mid}");
+}
+
+/// A start whose residual overflows (e^800) is refused as such, not
+/// iterated from or taken as converged: an unstable dynamic run's state
+/// at 1e150 had been accepted with 0 iterations for 70 increments.
+#[test]
+fn an_overflowed_start_is_refused() {
+    let n = 20;
+    let mut p = Bratu {
+        n,
+        lambda: 3.0,
+        evaluations: 0,
+        work: vec![0.0; n],
+        diag: Vec::new(),
+    };
+    let mut x = vec![800.0; n];
+    let result = NewtonKrylov::new(n, NewtonParams::default())
+        .solve(&mut p, &mut x, &mut |_| std::ops::ControlFlow::Continue(()));
+    match result {
+        Err(NewtonError::Start(e)) => assert!(e.0.contains("not finite"), "{}", e.0),
+        other => panic!("{other:?}"),
+    }
 }
 
 /// A chain of n unit springs, ends held at 0, each node pulled down by

@@ -320,13 +320,35 @@ impl NewtonKrylovSolver {
             problem.residual(&zero, &mut f0, Frozen::Renew).is_ok()
                 && problem.prepare_preconditioner(&zero, None).is_ok()
         };
+        // The Jacobian products do not see a contact face that touches
+        // without pressure (a one-sided penalty has no derivative at zero
+        // gap); the preconditioners give it its spring. Where the step's
+        // first fraction presses every such face, the tangent is taken
+        // there (conditions at th), where their springs act both ways: a
+        // J2 bar meshed touching a rigid platen, upset 30 % in ten steps,
+        // converged to a non-uniform state (pressure 114–916, σ_xx ±300)
+        // from the preconditioner's step. Where a face still touches
+        // without pressure there, the preconditioner's step serves: a J2
+        // block meshed touching two rigid plates, squeezed 1 % in one
+        // step, was free along the squeeze in the tangent solve, started
+        // 0.09 down where the plate moves 0.01, and Newton converged to a
+        // curled state; from the preconditioner's step, 8 iterations to
+        // the uniform one.
+        let touching_at_start = contacts.any_touching_without_pressure(bodies);
         conditions_at(bodies, th);
         let ok = ok && {
             let mut problem = self.problem(bodies, contacts);
             problem.residual(&zero, &mut fh, Frozen::Keep).is_ok()
         };
-        // the tangent at the start is that of the conditions at t0
-        conditions_at(bodies, t0);
+        let touching = contacts.any_touching_without_pressure(bodies);
+        // the tangent at the start is that of the conditions at t0, or at
+        // th where the step presses the faces that touched
+        let (tangent_time, base) = if touching_at_start {
+            (th, &fh)
+        } else {
+            (t0, &f0)
+        };
+        conditions_at(bodies, tangent_time);
         let rhs: Vec<f64> = fh
             .iter()
             .zip(&f0)
@@ -336,15 +358,6 @@ impl NewtonKrylovSolver {
         let plastic = bodies
             .iter()
             .any(|b| !b.rigid && b.momentum.law.plastic_strain().is_some());
-        // The Jacobian products do not see a contact face that touches
-        // without pressure (a one-sided penalty has no derivative at zero
-        // gap), the preconditioners give it its spring: a plastic block
-        // meshed touching two rigid plates, squeezed 1 % in one step, was
-        // free along the squeeze in the tangent solve, started 0.09 down
-        // where the plate moves 0.01, and Newton converged (32 iterations)
-        // to a curled, non-uniform equilibrium; from the preconditioner's
-        // step, 8 iterations to the uniform state.
-        let touching = contacts.any_touching_without_pressure(bodies);
         let ok = ok && {
             let (newton, mut problem) = self.newton_and_problem(bodies, contacts);
             problem.precondition(&rhs, &mut x0);
@@ -357,7 +370,7 @@ impl NewtonKrylovSolver {
                 let solved = newton.tangent_solve(
                     &mut problem,
                     &zero,
-                    &f0,
+                    base,
                     &rhs,
                     &mut y,
                     TANGENT_PREDICTOR_TOLERANCE,

@@ -466,6 +466,75 @@ slave = "block/ymax"
     assert!((hi - lo) < 1e-2 * lo.abs(), "σ_yy not uniform: {lo}..{hi}");
 }
 
+/// A J2 bar (1/8 of a 20 × 10 × 20 block) meshed touching a rigid platen
+/// and upset 30 % in ten increments, frictionless, no solver keys: the
+/// state is uniform, σ_yy the single-point response. The first increment
+/// started from the preconditioner's step (the platen's contact faces
+/// touch without pressure, unseen by the Jacobian products at t0), and
+/// Newton converged to a non-uniform state (pressure 114–916, σ_xx ±300,
+/// found by a probe); the tangent is now taken where the step's first
+/// fraction presses those faces. Measured: σ_yy −547.384…−547.360,
+/// |σ_xx| ≤ 0.013, 5–9 Newton iterations per increment.
+#[test]
+fn j2_bar_upset_on_a_touching_platen_stays_uniform() {
+    let (e, nu, sy, h) = (200e3, 0.3, 200.0, 1000.0);
+    let case = format!(
+        r#"
+title = "b3d"
+[analysis]
+strain = "large"
+[time]
+end = 1.0
+steps = 10
+[[body]]
+name = "billet"
+mesh = {{ generator = "box", min = [0, 0, 0], max = [10, 5, 10], cells = [8, 4, 8] }}
+material = {{ model = "neo-hookean-plastic", E = {e}, nu = {nu}, yield = {sy}, hardening = {h} }}
+[body.boundary.xmin]
+type = "symmetry"
+[body.boundary.ymin]
+type = "symmetry"
+[body.boundary.zmin]
+type = "symmetry"
+[[body]]
+name = "platen"
+rigid = true
+mesh = {{ generator = "box", min = [0, 5, 0], max = [20, 6, 20], cells = [4, 1, 4] }}
+[body.boundary.ymax]
+type = "rigid-motion"
+translation = {{ table = [[0.0, [0, 0, 0]], [1.0, [0, -1.5, 0]]] }}
+[[contact]]
+master = "platen/ymin"
+slave = "billet/ymax"
+"#
+    );
+    let out = run_toml(&case, std::path::Path::new("."));
+    assert!(out.converged, "{:?}", out.failure);
+    let law = NeoHookeanPlastic::new(e, nu, false, Hardening::linear(sy, h).unwrap()).unwrap();
+    let stretches: Vec<f64> = (1..=10).map(|k| 1.0 - 0.03 * k as f64).collect();
+    // force per initial area, σ s² with s the lateral stretch: the Cauchy
+    // stress is the force over the current area, σ = F/(A s²)
+    let exact_force = -single_point_uniaxial(&law, &stretches)[9];
+    let sigma = &out.bodies[0].momentum.sigma;
+    let (lo, hi) = sigma
+        .iter()
+        .map(|s| s[(1, 1)])
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+            (a.min(x), b.max(x))
+        });
+    let sxx = sigma.iter().map(|s| s[(0, 0)].abs()).fold(0.0, f64::max);
+    let force = out.contacts.interfaces[0].stats.normal_force / 100.0;
+    eprintln!(
+        "J2 bar upset 30 %: σ_yy {lo:.3}..{hi:.3}, max |σ_xx| {sxx:.3}, force per initial area {force:.3} against {exact_force:.3}"
+    );
+    assert!(hi - lo < 1e-3 * lo.abs(), "σ_yy {lo}..{hi}");
+    assert!(sxx < 1e-3 * lo.abs(), "σ_xx {sxx}");
+    assert!(
+        (force / exact_force - 1.0).abs() < 1e-2,
+        "{force} against {exact_force}"
+    );
+}
+
 /// Tip of the cantilever of [`elastica_case`]: mean end-face displacement
 /// over L, (u/L, v/L) positive towards the wall and downwards.
 fn cantilever_tip(strain: &str, traction: f64, steps: usize) -> (f64, f64, usize) {

@@ -870,6 +870,15 @@ fn build_body(
             Num(x.z)
         ));
     }
+    if case.analysis.kind == crate::case::AnalysisKind::Dynamic
+        && !spec.rigid
+        && has_tetrahedra(&mesh)
+    {
+        setup_notes.push(format!(
+            "body '{}': its mesh has tetrahedra, and dynamic analyses on tetrahedra have been seen to grow without bound (a tetrahedral cantilever under a sudden load: stable in 20 steps per 0.78 s, unbounded in 80, under either nonlinear method; docs/solver-notes.md); mesh it with hexahedra or prisms for dynamics",
+            spec.name
+        ));
+    }
     if case.analysis.kind == crate::case::AnalysisKind::Dynamic && !spec.rigid {
         // rho is required on deformable bodies of dynamic analyses (checked
         // with the case); the cell mass ρΩ is conserved by the motion
@@ -947,6 +956,12 @@ fn build_body(
         conditions_saved: Vec::new(),
         force_controls,
     })
+}
+
+/// Whether a cell of the mesh has four faces (a tetrahedron).
+fn has_tetrahedra(mesh: &PolyMesh) -> bool {
+    let (offsets, _) = mesh.cell_faces();
+    offsets.windows(2).any(|w| w[1] - w[0] == 4)
 }
 
 /// Why a body's mesh needs α_RC = 1 when the case does not set it, if it

@@ -1894,3 +1894,43 @@ fn any_choice_of_fields_writes_a_contact_case() {
         }
     }
 }
+
+/// A dynamic analysis of a tetrahedral mesh: `fvc check` warns that such
+/// runs were seen to grow without bound (a probe's cantilever, 2026-12-01:
+/// displacements 1e150 on a 2 m beam with exit 0). The same mesh static:
+/// no such note.
+#[test]
+fn dynamics_on_tetrahedra_is_warned_of() {
+    let dir = tempfile::tempdir().unwrap();
+    let msh = std::fs::read(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../validation/cases/tet-cantilever/beam-coarse.msh"
+    ))
+    .unwrap();
+    write(dir.path(), "beam.msh", &msh);
+    let case = |kind: &str| {
+        format!(
+            r#"title = "beam"
+[analysis]
+kind = "{kind}"
+[time]
+end = 0.1
+steps = 2
+[[body]]
+name = "beam"
+mesh = {{ file = "beam.msh" }}
+material = {{ model = "linear-elastic", E = 1.0e5, nu = 0.3, rho = 1.0 }}
+[body.boundary.root]
+type = "displacement"
+value = [0, 0, 0]
+"#
+        )
+    };
+    for (kind, warned) in [("dynamic", true), ("static", false)] {
+        let p = write(dir.path(), "case.toml", case(kind).as_bytes());
+        let (code, out, err) = fvc(&["check", p.to_str().unwrap()]);
+        assert_eq!(code, 0, "{kind}: {err}");
+        let all = format!("{out}{err}");
+        assert_eq!(all.contains("grow without bound"), warned, "{kind}: {all}");
+    }
+}

@@ -121,9 +121,12 @@ impl MeshGeometry {
         }
         for c in 0..nc {
             if !(vol[c] > 0.0) {
+                // where it is: the cell's index is the reader's, not the
+                // file's element tag
+                let x = est[c];
                 return Err(MeshError::invalid(format!(
-                    "cell {c} has non-positive volume {:.3e} (inverted or degenerate cell)",
-                    vol[c]
+                    "cell {c} (about ({:.6e}, {:.6e}, {:.6e})) has non-positive volume {:.3e} (inverted or degenerate cell)",
+                    x.x, x.y, x.z, vol[c]
                 )));
             }
             ctr[c] /= vol[c];
@@ -182,5 +185,36 @@ impl MeshGeometry {
     /// Total volume.
     pub fn total_volume(&self) -> Real {
         self.cell_volumes.iter().sum()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{CellShape, CellType};
+
+    /// A tetrahedron of four points in the plane z = 0 (each face a true
+    /// triangle): refused, the message saying where (the cell index is the
+    /// reader's, not the file's).
+    #[test]
+    fn a_flat_cell_is_refused_where_it_is() {
+        let points = vec![
+            Vector::new(2.0, 0.0, 0.0),
+            Vector::new(3.0, 0.0, 0.0),
+            Vector::new(2.0, 1.0, 0.0),
+            Vector::new(3.0, 1.0, 0.0),
+        ];
+        let cells = vec![CellShape {
+            kind: CellType::Tetra,
+            nodes: [0u32, 1, 2, 3].into_iter().collect(),
+        }];
+        let e = PolyMesh::from_cells(points, cells, &[])
+            .and_then(|m| MeshGeometry::new(&m).map(|_| ()))
+            .expect_err("flat");
+        let s = e.to_string();
+        assert!(
+            s.contains("non-positive volume") && s.contains("(about (2.5"),
+            "{s}"
+        );
     }
 }

@@ -32,7 +32,19 @@ pub fn dot(a: &[f64], b: &[f64]) -> f64 {
 
 /// ‖a‖₂.
 pub fn norm(a: &[f64]) -> f64 {
-    dot(a, a).sqrt()
+    let squares = dot(a, a);
+    // the sum of squares under- or overflows where the entries are below
+    // about 1e-154 or above 1e154 (a probe's E = 1e-200: every residual
+    // norm 0, an increment "converged" in no iteration): then again,
+    // scaled by the largest entry
+    if squares.is_nan() || (squares.is_normal() && squares < f64::MAX) {
+        return squares.sqrt();
+    }
+    let largest = a.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    if largest == 0.0 || !largest.is_finite() {
+        return largest;
+    }
+    largest * a.iter().map(|x| (x / largest).powi(2)).sum::<f64>().sqrt()
 }
 
 /// y ← y + α x.
@@ -94,6 +106,17 @@ pub fn release_pages(_v: &mut [f64]) {}
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn norm_of_tiny_and_huge_entries() {
+        for scale in [1e-200, 1.0, 1e200] {
+            let n = norm(&[3.0 * scale, 4.0 * scale]);
+            assert!((n / (5.0 * scale) - 1.0).abs() < 1e-15, "{scale}: {n}");
+        }
+        assert_eq!(norm(&[0.0, 0.0]), 0.0);
+        assert!(norm(&[1.0, f64::NAN]).is_nan());
+        assert_eq!(norm(&[1.0, f64::INFINITY]), f64::INFINITY);
+    }
 
     #[test]
     fn kernels_match_the_plain_loops() {

@@ -236,6 +236,18 @@ fn run_case_noting(
             None => failure = Some(e.to_string()),
         }
     }
+    // a continued run with nothing left to solve writes the summary of the
+    // state it continues from: evaluated, or its reactions were those of
+    // no solve, zero (found by a fresh-clone walkthrough, 2026-12-01)
+    if let Some(r) = resumed
+        .as_ref()
+        .filter(|r| r.time >= case.time.end - 1e-9 * case.time.end.abs())
+    {
+        for b in bodies.iter_mut() {
+            b.refresh_conditions(r.time);
+        }
+        let _ = solver.refresh_restored(&mut bodies, &mut contacts);
+    }
     // FVC_TRACE=1 prints the residual of every outer iteration, 2 also the
     // contact statistics (debugging aid)
     let trace_outer = std::env::var_os("FVC_TRACE").is_some_and(|v| v == "1" || v == "2");

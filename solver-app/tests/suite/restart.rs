@@ -325,6 +325,40 @@ fn a_continued_run_with_other_steps_goes_on_in_time() {
     }
 }
 
+/// A restart from results that already reach the case's end solves
+/// nothing (exit 0, the history kept), and its summary holds the reactions
+/// of the state it continues from. They were those of no solve, zero
+/// (found by a fresh-clone walkthrough, 2026-12-01).
+#[test]
+fn a_restart_with_nothing_left_to_solve_keeps_the_reactions() {
+    let dir = tempfile::tempdir().unwrap();
+    let (code, err) = run(dir.path(), crate::cli::GOOD, &[]);
+    assert_eq!(code, 0, "{err}");
+    let res = dir.path().join("out/block");
+    let reaction = || {
+        let text = std::fs::read_to_string(res.join("summary.json")).unwrap();
+        let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        v["patches"]["block/ymax"]["reaction_force"][1]
+            .as_f64()
+            .unwrap()
+    };
+    let before = reaction();
+    let whole = history(&res);
+    let file = h5(dir.path(), "block");
+    let (code, err) = run(
+        dir.path(),
+        crate::cli::GOOD,
+        &["--restart", file.to_str().unwrap()],
+    );
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(history(&res), whole);
+    let after = reaction();
+    assert!(
+        before < -2.0 && (after / before - 1.0).abs() < 1e-6,
+        "{after} against {before}"
+    );
+}
+
 /// validation/cases/wire-drawing cut to `steps` increments of its 1 ms
 /// (the meshes read from the case's folder).
 fn wire_drawing_case(steps: usize) -> String {

@@ -71,6 +71,17 @@ fn read_summary(res: &Path) -> (String, serde_json::Value) {
     (text, v)
 }
 
+/// The last row of a results folder's `history.csv`, as numbers.
+fn last_history_row(res: &Path) -> Vec<f64> {
+    let hist = std::fs::read_to_string(res.join("history.csv")).unwrap();
+    hist.lines()
+        .last()
+        .unwrap()
+        .split(',')
+        .map(|x| x.parse().unwrap())
+        .collect()
+}
+
 /// Runs `case` (titled `title`), expects it to solve, and returns the
 /// normal force of its first contact from `summary.json`.
 fn first_contact_force(dir: &Path, case: &str, title: &str) -> f64 {
@@ -1796,14 +1807,7 @@ fn a_failed_contact_run_writes_its_last_sub_step_throughout() {
             (ft.abs() / applied - 1.0).abs() < 1e-3,
             "{method}: F_t {ft} against {applied}"
         );
-        let hist = std::fs::read_to_string(res.join("history.csv")).unwrap();
-        let last: Vec<f64> = hist
-            .lines()
-            .last()
-            .unwrap()
-            .split(',')
-            .map(|x| x.parse().unwrap())
-            .collect();
+        let last = last_history_row(&res);
         // the summary counts the increment written, as the history does
         let (_, v) = read_summary(&res);
         assert_eq!(v["increments"], 2, "{method}");
@@ -1842,14 +1846,7 @@ fn a_failed_run_writes_its_last_sub_step_with_that_time_s_conditions() {
         let (code, outdir, err) = run_quietly(dir.path(), case.as_bytes());
         assert_eq!(code, 1, "{method}: {err}");
         assert!(err.contains("is written as increment 2"), "{method}: {err}");
-        let hist = std::fs::read_to_string(outdir.join("pushed/history.csv")).unwrap();
-        let last: Vec<f64> = hist
-            .lines()
-            .last()
-            .unwrap()
-            .split(',')
-            .map(|x| x.parse().unwrap())
-            .collect();
+        let last = last_history_row(&outdir.join("pushed"));
         // time, iterations, residual, ymax Fx Fy Fz, normal force, area
         assert!(last[0] > 1.0 && last[0] < 2.0, "{method}: t = {}", last[0]);
         assert!(

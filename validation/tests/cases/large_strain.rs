@@ -445,17 +445,7 @@ slave = "block/ymax"
         .iter()
         .map(|c| c.stats.normal_force)
         .collect();
-    let syy: Vec<f64> = out.bodies[0]
-        .momentum
-        .sigma
-        .iter()
-        .map(|s| s[(1, 1)])
-        .collect();
-    let (lo, hi) = syy
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
-            (a.min(x), b.max(x))
-        });
+    let (lo, hi) = sigma_yy_range(&out.bodies[0]);
     eprintln!(
         "J2 block squeezed 1 % in one step: plate forces {forces:?} against {exact:.4}; σ_yy {lo:.2}..{hi:.2}; {} Newton iterations",
         out.summary.outer_iterations
@@ -464,6 +454,17 @@ slave = "block/ymax"
         assert!((f / exact - 1.0).abs() < 5e-3, "force {f} against {exact}");
     }
     assert!((hi - lo) < 1e-2 * lo.abs(), "σ_yy not uniform: {lo}..{hi}");
+}
+
+/// Least and greatest σ_yy over the cells of `body`.
+fn sigma_yy_range(body: &solver_app::model::Body) -> (f64, f64) {
+    body.momentum
+        .sigma
+        .iter()
+        .map(|s| s[(1, 1)])
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+            (a.min(x), b.max(x))
+        })
 }
 
 /// A J2 bar (1/8 of a 20 × 10 × 20 block) meshed touching a rigid platen
@@ -515,14 +516,13 @@ slave = "billet/ymax"
     // force per initial area, σ s² with s the lateral stretch: the Cauchy
     // stress is the force over the current area, σ = F/(A s²)
     let exact_force = -single_point_uniaxial(&law, &stretches)[9];
-    let sigma = &out.bodies[0].momentum.sigma;
-    let (lo, hi) = sigma
+    let (lo, hi) = sigma_yy_range(&out.bodies[0]);
+    let sxx = out.bodies[0]
+        .momentum
+        .sigma
         .iter()
-        .map(|s| s[(1, 1)])
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
-            (a.min(x), b.max(x))
-        });
-    let sxx = sigma.iter().map(|s| s[(0, 0)].abs()).fold(0.0, f64::max);
+        .map(|s| s[(0, 0)].abs())
+        .fold(0.0, f64::max);
     let force = out.contacts.interfaces[0].stats.normal_force / 100.0;
     eprintln!(
         "J2 bar upset 30 %: σ_yy {lo:.3}..{hi:.3}, max |σ_xx| {sxx:.3}, force per initial area {force:.3} against {exact_force:.3}"

@@ -1754,6 +1754,27 @@ slave = "block/ymin"
 friction = 0.3
 "#;
 
+/// Runs a variant of [`BLOCK_PUSHED_PAST_FRICTION`] with `method` (the
+/// segregated one allowed 3000 outer iterations), which must fail after
+/// converged sub-steps of its second increment; returns the temporary
+/// folder (kept alive) and the results folder.
+fn run_failing_push(case: &str, method: &str) -> (tempfile::TempDir, PathBuf) {
+    let max_outer = if method == "segregated" {
+        "max_outer = 3000\n"
+    } else {
+        ""
+    };
+    let case = case.replace(
+        "steps = 2\n",
+        &format!("steps = 2\n[solver]\nnonlinear = \"{method}\"\n{max_outer}"),
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let (code, outdir, err) = run_quietly(dir.path(), case.as_bytes());
+    assert_eq!(code, 1, "{method}: {err}");
+    assert!(err.contains("is written as increment 2"), "{method}: {err}");
+    (dir, outdir.join("pushed"))
+}
+
 /// The last converged sub-step that a failed run writes is that state
 /// throughout: its stresses, reactions, contact surfaces, pressures and
 /// tractions and its residual. Found by a probe (2026-11-30): under
@@ -1765,16 +1786,8 @@ friction = 0.3
 /// = the applied 0.6875 × 2.066e6 × 0.05.
 #[test]
 fn a_failed_contact_run_writes_its_last_sub_step_throughout() {
-    for (method, max_outer) in [("newton-krylov", ""), ("segregated", "max_outer = 3000\n")] {
-        let case = BLOCK_PUSHED_PAST_FRICTION.replace(
-            "steps = 2\n",
-            &format!("steps = 2\n[solver]\nnonlinear = \"{method}\"\n{max_outer}"),
-        );
-        let dir = tempfile::tempdir().unwrap();
-        let (code, outdir, err) = run_quietly(dir.path(), case.as_bytes());
-        assert_eq!(code, 1, "{method}: {err}");
-        assert!(err.contains("is written as increment 2"), "{method}: {err}");
-        let res = outdir.join("pushed");
+    for method in ["newton-krylov", "segregated"] {
+        let (_dir, res) = run_failing_push(BLOCK_PUSHED_PAST_FRICTION, method);
         let file = hdf5::File::open(res.join("pushed.h5")).unwrap();
         let g = file.group("time/2").unwrap();
         let t: f64 = g.attr("time").unwrap().read_scalar().unwrap();
@@ -1831,22 +1844,15 @@ fn a_failed_contact_run_writes_its_last_sub_step_throughout() {
 /// `normal-displacement`: 2.3e9 against 8.4e4). Measured: 333,091.
 #[test]
 fn a_failed_run_writes_its_last_sub_step_with_that_time_s_conditions() {
-    for (method, max_outer) in [("newton-krylov", ""), ("segregated", "max_outer = 3000\n")] {
-        let case = BLOCK_PUSHED_PAST_FRICTION
-            .replace(
-                "[[0.0, 0.0], [1.0, -1e-3]]",
-                "[[0.0, 0.0], [1.0, -1e-3], [2.0, -2e-3]]",
-            )
-            .replace("2.066e6", "6e6")
-            .replace(
-                "steps = 2\n",
-                &format!("steps = 2\n[solver]\nnonlinear = \"{method}\"\n{max_outer}"),
-            );
-        let dir = tempfile::tempdir().unwrap();
-        let (code, outdir, err) = run_quietly(dir.path(), case.as_bytes());
-        assert_eq!(code, 1, "{method}: {err}");
-        assert!(err.contains("is written as increment 2"), "{method}: {err}");
-        let last = last_history_row(&outdir.join("pushed"));
+    let case = BLOCK_PUSHED_PAST_FRICTION
+        .replace(
+            "[[0.0, 0.0], [1.0, -1e-3]]",
+            "[[0.0, 0.0], [1.0, -1e-3], [2.0, -2e-3]]",
+        )
+        .replace("2.066e6", "6e6");
+    for method in ["newton-krylov", "segregated"] {
+        let (_dir, res) = run_failing_push(&case, method);
+        let last = last_history_row(&res);
         // time, iterations, residual, ymax Fx Fy Fz, normal force, area
         assert!(last[0] > 1.0 && last[0] < 2.0, "{method}: t = {}", last[0]);
         assert!(

@@ -872,7 +872,7 @@ fn build_body(
     }
     if case.analysis.kind == crate::case::AnalysisKind::Dynamic
         && !spec.rigid
-        && has_tetrahedra(&mesh)
+        && pyramids_and_tetrahedra(&mesh).1
     {
         setup_notes.push(format!(
             "body '{}': its mesh has tetrahedra, and dynamic analyses on tetrahedra have been seen to grow without bound (a tetrahedral cantilever under a sudden load: stable in 20 steps per 0.78 s, unbounded in 80, under either nonlinear method; docs/solver-notes.md); mesh it with hexahedra or prisms for dynamics",
@@ -958,10 +958,21 @@ fn build_body(
     })
 }
 
-/// Whether a cell of the mesh has four faces (a tetrahedron).
-fn has_tetrahedra(mesh: &PolyMesh) -> bool {
-    let (offsets, _) = mesh.cell_faces();
-    offsets.windows(2).any(|w| w[1] - w[0] == 4)
+/// Whether the mesh has pyramids (five faces, one of them a quadrangle)
+/// and whether it has tetrahedra (four faces).
+fn pyramids_and_tetrahedra(mesh: &PolyMesh) -> (bool, bool) {
+    let (offsets, faces) = mesh.cell_faces();
+    let (mut pyramids, mut tets) = (false, false);
+    for c in 0..mesh.n_cells {
+        let own = &faces[offsets[c] as usize..offsets[c + 1] as usize];
+        let quads = own
+            .iter()
+            .filter(|&&f| mesh.face(f as usize).len() == 4)
+            .count();
+        pyramids |= own.len() == 5 && quads == 1;
+        tets |= own.len() == 4;
+    }
+    (pyramids, tets)
 }
 
 /// Why a body's mesh needs α_RC = 1 when the case does not set it, if it
@@ -977,17 +988,7 @@ pub fn rhie_chow_for_cell_shapes(
     mesh: &PolyMesh,
     updated_lagrangian: bool,
 ) -> Option<&'static str> {
-    let (offsets, faces) = mesh.cell_faces();
-    let (mut pyramids, mut tets) = (false, false);
-    for c in 0..mesh.n_cells {
-        let own = &faces[offsets[c] as usize..offsets[c + 1] as usize];
-        let quads = own
-            .iter()
-            .filter(|&&f| mesh.face(f as usize).len() == 4)
-            .count();
-        pyramids |= own.len() == 5 && quads == 1;
-        tets |= own.len() == 4;
-    }
+    let (pyramids, tets) = pyramids_and_tetrahedra(mesh);
     if pyramids {
         Some("its mesh has pyramids")
     } else if tets && updated_lagrangian {

@@ -88,9 +88,11 @@ pub fn contact_report(contacts: &crate::contact_coupling::ContactSet) -> Vec<Str
                 "off"
             };
             format!(
-                "contact[{i}] {} on {}: penalty_scale {} ({}); augmentation {augmentation} ({})",
+                "contact[{i}] {} on {}: algorithm {} ({}); penalty_scale {} ({}); augmentation {augmentation} ({})",
                 c.slave_name,
                 c.master_name,
+                c.algorithm_choice.name(),
+                c.algorithm_choice.reason(),
                 c.penalty_scale.value(),
                 c.penalty_scale.reason(),
                 c.augmentation_choice.reason()

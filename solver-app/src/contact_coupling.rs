@@ -6,8 +6,7 @@
 //! under-relaxed tractions (eq. 4.13) become the traction condition of the
 //! contact patches.
 use crate::case::{
-    Augmentation, Case, ContactAlgorithm as AlgorithmName, Coupling as CouplingName, Detection,
-    FacePosition, InputError, ScalarValue,
+    Augmentation, Case, Coupling as CouplingName, Detection, FacePosition, InputError, ScalarValue,
 };
 use crate::model::Body;
 use crate::profile::Phase;
@@ -21,12 +20,14 @@ use contact_force::{
 use fv_discretise::{LinearisedContact, PatchCondition};
 use fv_mesh::{CellToPoint, Surface, Vector};
 
+mod algorithm_choice;
 mod augmentation_choice;
 mod frictionless_support;
 mod penalty_scale;
 mod restart;
 mod state_evaluation;
 
+pub use algorithm_choice::AlgorithmChoice;
 pub use augmentation_choice::AugmentationChoice;
 pub use frictionless_support::frictionless_slide;
 pub use penalty_scale::PenaltyScale;
@@ -429,6 +430,8 @@ pub struct ContactInterface {
     pub penalty_scale: PenaltyScale,
     /// Augmented Lagrangian updates or not, and why (given or chosen).
     pub augmentation_choice: AugmentationChoice,
+    /// The contact algorithm, and why.
+    pub algorithm_choice: AlgorithmChoice,
     detector: Box<dyn Detector + Send>,
     pairs: CandidatePairs,
     /// The last detection (Newton–Krylov: `pairs` is the union of the
@@ -935,14 +938,6 @@ impl ContactSet {
         for (ci, c) in case.contacts.iter().enumerate() {
             let key = format!("contact[{ci}]");
             let implicit = c.coupling == CouplingName::Implicit;
-            let algorithm_name = match c.algorithm {
-                AlgorithmName::SegmentToSegment => "segment-to-segment",
-                AlgorithmName::Pointwise => "pointwise",
-                AlgorithmName::PointwiseNagata => "pointwise-nagata",
-                AlgorithmName::SegmentToSegmentNagata => "segment-to-segment-nagata",
-            };
-            let kind = ContactAlgorithmKind::from_name(algorithm_name)
-                .map_err(|e| src.error(&format!("{key}.algorithm"), e.to_string()))?;
             let detection = match c.detection {
                 Detection::AdvancingFront => "advancing-front",
                 Detection::Bvh => "bvh",
@@ -952,6 +947,10 @@ impl ContactSet {
                 .map_err(|e| src.error(&format!("{key}.detection"), e.to_string()))?;
             let (mb, mp) = side(bodies, case, &format!("{key}.master"), &c.master)?;
             let (sb, sp) = side(bodies, case, &format!("{key}.slave"), &c.slave)?;
+            let algorithm_choice =
+                AlgorithmChoice::choose(c.algorithm, &c.friction, (&bodies[mb], mp), &bodies[sb]);
+            let kind = ContactAlgorithmKind::from_name(algorithm_choice.name())
+                .map_err(|e| src.error(&format!("{key}.algorithm"), e.to_string()))?;
             let make_side = |b: usize, p: usize| -> Result<ContactSide, InputError> {
                 let surface = Surface::new(&bodies[b].mesh, p)
                     .map_err(|e| src.error(&key, format!("contact surface: {e}")))?;
@@ -1033,6 +1032,7 @@ impl ContactSet {
                 slave,
                 penalty_scale,
                 augmentation_choice,
+                algorithm_choice,
                 detector,
                 pairs: CandidatePairs::new(),
                 detected: CandidatePairs::new(),

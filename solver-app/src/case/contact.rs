@@ -8,7 +8,8 @@ use contact_force::SlipHistory;
 /// `contact.algorithm`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ContactAlgorithm {
-    /// `"segment-to-segment"` (default).
+    /// `"segment-to-segment"` (the default but for friction on a plastic
+    /// slave, [`crate::contact_coupling::AlgorithmChoice`]).
     SegmentToSegment,
     /// `"pointwise"`.
     Pointwise,
@@ -141,8 +142,9 @@ pub struct ContactSpec {
     pub master: (String, String),
     /// `(body, patch)` of `slave = "body/patch"`; the body exists.
     pub slave: (String, String),
-    /// Contact algorithm.
-    pub algorithm: ContactAlgorithm,
+    /// Contact algorithm; `None` when the case does not give it: then
+    /// [`crate::contact_coupling::AlgorithmChoice::choose`] chooses.
+    pub algorithm: Option<ContactAlgorithm>,
     /// Coupling of the two bodies.
     pub coupling: Coupling,
     /// Normal penalty scale f_n^scale of eq. 4.4a (> 0); `None` when the
@@ -250,8 +252,8 @@ pub(crate) fn contact(node: &Node<'_>, bodies: &[&str]) -> Res<ContactSpec> {
     Ok(ContactSpec {
         master,
         slave,
-        algorithm: t.opt("algorithm", ContactAlgorithm::SegmentToSegment, |n| {
-            n.choice("contact algorithm", &ALGORITHMS)
+        algorithm: t.opt("algorithm", None, |n| {
+            n.choice("contact algorithm", &ALGORITHMS).map(Some)
         })?,
         coupling: t.opt("coupling", Coupling::Explicit, |n| {
             n.choice("coupling", &COUPLINGS)

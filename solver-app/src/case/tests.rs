@@ -891,7 +891,7 @@ material = { model = "linear-elastic", E = 1, nu = 0.3 }
         vec![ContactSpec {
             master: ("plane".into(), "ymax".into()),
             slave: ("cyl".into(), "curved".into()),
-            algorithm: ContactAlgorithm::SegmentToSegment,
+            algorithm: None,
             coupling: Coupling::Explicit,
             penalty_scale: None,
             friction: ScalarValue::Constant(0.0),
@@ -929,7 +929,7 @@ algorithm = "pointwise"
     ));
     assert_eq!(c.contacts.len(), 3);
     let k = &c.contacts[0];
-    assert_eq!(k.algorithm, ContactAlgorithm::PointwiseNagata);
+    assert_eq!(k.algorithm, Some(ContactAlgorithm::PointwiseNagata));
     assert_eq!(k.coupling, Coupling::Implicit);
     assert_eq!(
         (k.penalty_scale, &k.friction, k.tangential_penalty_scale),
@@ -938,10 +938,10 @@ algorithm = "pointwise"
     assert_eq!((k.relaxation_normal, k.relaxation_tangential), (0.2, 1.0));
     assert_eq!(k.detection, Detection::Bvh);
     let k = &c.contacts[1];
-    assert_eq!(k.algorithm, ContactAlgorithm::SegmentToSegmentNagata);
+    assert_eq!(k.algorithm, Some(ContactAlgorithm::SegmentToSegmentNagata));
     assert_eq!((k.relaxation_normal, k.relaxation_tangential), (0.1, 0.05));
     assert_eq!(k.detection, Detection::BruteForce);
-    assert_eq!(c.contacts[2].algorithm, ContactAlgorithm::Pointwise);
+    assert_eq!(c.contacts[2].algorithm, Some(ContactAlgorithm::Pointwise));
 
     let bad = |extra: &str| fail(&format!("{two}[[contact]]\n{extra}\n"));
     let e = bad("master = \"plane/ymax\"\nslave = \"cyl/ymax\"\nalgorithm = \"mortar\"");

@@ -581,7 +581,7 @@ fn case_format_example_parses_with_stated_values() {
         vec![ContactSpec {
             master: ("plane".into(), "top".into()),
             slave: ("cylinder".into(), "curved".into()),
-            algorithm: ContactAlgorithm::SegmentToSegment,
+            algorithm: Some(ContactAlgorithm::SegmentToSegment),
             coupling: Coupling::Explicit,
             penalty_scale: Some(1.0),
             friction: solver_app::case::ScalarValue::Constant(0.0),

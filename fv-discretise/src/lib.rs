@@ -20,7 +20,10 @@ pub mod pcg_ic0;
 
 pub use boundary_conditions::{wedge_rotations, LinearisedContact, PatchCondition};
 pub use least_squares_gradient::LeastSquaresGradient;
-pub use solid_momentum::{Inertia, MomentumParams, RhieChowHistory, SolidMomentum, StateNode};
+pub use solid_momentum::{
+    Inertia, MomentumParams, RhieChowHistory, RhieChowPlastic, SolidMomentum, StateNode,
+    PLASTIC_RC_SHARE_FLOOR,
+};
 pub use stress_law::{current_area_vector, StressLaw};
 
 pub use amg::PcgAmg;

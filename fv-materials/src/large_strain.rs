@@ -264,6 +264,12 @@ pub trait LargeStrainMaterial: Send + Sync + std::fmt::Debug {
         false
     }
 
+    /// The hardening modulus H' = dσ_y/dε̄p at equivalent plastic strain
+    /// `eps_p`, for plastic models (`None` for the others).
+    fn hardening_slope(&self, _eps_p: f64) -> Option<f64> {
+        None
+    }
+
     /// Virgin state of `n_cells` cells for this model.
     fn new_state(&self, n_cells: usize) -> MaterialState {
         MaterialState::new(n_cells, false)

@@ -94,6 +94,9 @@ impl LargeStrainMaterial for NeoHookeanPlastic {
     fn new_state(&self, n_cells: usize) -> MaterialState {
         MaterialState::new(n_cells, true)
     }
+    fn hardening_slope(&self, eps_p: f64) -> Option<f64> {
+        Some(self.hardening.slope(eps_p))
+    }
     /// Radial return of eqs. 2.28–2.31 (see the type documentation).
     #[inline]
     fn update_point(

@@ -849,6 +849,7 @@ fn build_body(
     }
     let updated_lagrangian = law.is_updated_lagrangian();
     let mut momentum = SolidMomentum::new(&mesh, &geom, law, conditions);
+    momentum.rhie_chow_plastic = case.solver.rhie_chow_plastic;
     if !case.solver.rhie_chow_given {
         if let Some(why) = rhie_chow_for_cell_shapes(&mesh, updated_lagrangian) {
             momentum.rhie_chow_override = Some(1.0);

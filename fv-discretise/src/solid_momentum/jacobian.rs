@@ -233,7 +233,7 @@ impl SolidMomentum {
             let n = mesh.neighbour[f] as usize;
             let w = geom.weight(mesh, f);
             let l = times_vector(&geom.face_areas[f]);
-            let s = alpha * self.k * geom.face_mag(f) / self.dn[f];
+            let s = alpha * self.rc_face_scale(mesh, f) * self.k * geom.face_mag(f) / self.dn[f];
             // ∂force/∂G_f from the Rhie–Chow term and the carried forces
             let mut qf = transpose_times(&(geom.cell_centres[n] - geom.cell_centres[o])) * (-s);
             if carry {

@@ -86,6 +86,12 @@ impl SolidMomentum {
         if !self.rc_carried.is_empty() {
             out.put_vectors(format!("{prefix}/rhie_chow_carried"), &self.rc_carried);
         }
+        if !self.eps_p_before.is_empty() {
+            out.put_scalars(
+                format!("{prefix}/material/eps_p_before"),
+                &self.eps_p_before,
+            );
+        }
         if let Some(i) = &self.inertia {
             out.put_vectors(format!("{prefix}/inertia/u_prev"), &i.u_prev);
             out.put_vectors(format!("{prefix}/inertia/u_prev2"), &i.u_prev2);
@@ -196,6 +202,13 @@ impl SolidMomentum {
         let rc = format!("{prefix}/rhie_chow_carried");
         if state.has(&rc) {
             state.vectors_to_vec(&rc, &mut self.rc_carried)?;
+        }
+        let before = format!("{prefix}/material/eps_p_before");
+        if state.has(&before) {
+            self.eps_p_before.resize(mesh.n_cells, 0.0);
+            state.scalars_into(&before, &mut self.eps_p_before)?;
+        } else {
+            self.eps_p_before.clear();
         }
         if let Some(i) = &mut self.inertia {
             state.vectors_into(&format!("{prefix}/inertia/u_prev"), &mut i.u_prev)?;

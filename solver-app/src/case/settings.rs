@@ -1,6 +1,6 @@
 //! `[analysis]`, `[time]`, `[solver]` and `[output]`.
 
-use fv_discretise::RhieChowHistory;
+use fv_discretise::{RhieChowHistory, RhieChowPlastic};
 use fv_nonlinear::NonlinearMethod;
 
 use crate::output::{Field, FieldSet, Precision};
@@ -278,6 +278,9 @@ pub struct SolverSettings {
     /// What the Rhie–Chow term acts on under large strain (default the
     /// increment, as the thesis).
     pub rhie_chow_history: RhieChowHistory,
+    /// The Rhie–Chow stiffness where a body flows plastically (default
+    /// the flow's share, [`RhieChowPlastic::Flow`]).
+    pub rhie_chow_plastic: RhieChowPlastic,
     /// Outer-iteration acceleration (default anderson for a case without
     /// contact, none with contact: [`SolverSettings::for_analysis`]).
     pub acceleration: Acceleration,
@@ -311,6 +314,7 @@ impl Default for SolverSettings {
             rhie_chow: 0.1,
             rhie_chow_given: false,
             rhie_chow_history: RhieChowHistory::Incremental,
+            rhie_chow_plastic: RhieChowPlastic::Flow,
             acceleration: Acceleration::None,
             acceleration_depth: 10,
             acceleration_depth_given: false,
@@ -374,6 +378,12 @@ pub(crate) const STRAIN_KINDS: [(&str, StrainKind); 2] =
 pub(crate) const ON_NONCONVERGENCE: [(&str, OnNonConvergence); 2] = [
     ("abort", OnNonConvergence::Abort),
     ("continue", OnNonConvergence::Continue),
+];
+
+/// `solver.rhie_chow_plastic` by name.
+pub(crate) const RHIE_CHOW_PLASTIC: [(&str, RhieChowPlastic); 2] = [
+    ("flow", RhieChowPlastic::Flow),
+    ("elastic", RhieChowPlastic::Elastic),
 ];
 
 /// `solver.rhie_chow_history` by name.
@@ -642,6 +652,9 @@ pub(crate) fn solver(
         rhie_chow_given: t.has("rhie_chow"),
         rhie_chow_history: t.opt("rhie_chow_history", d.rhie_chow_history, |n| {
             n.choice("Rhie–Chow history", &RHIE_CHOW_HISTORIES)
+        })?,
+        rhie_chow_plastic: t.opt("rhie_chow_plastic", d.rhie_chow_plastic, |n| {
+            n.choice("Rhie–Chow stiffness in plastic flow", &RHIE_CHOW_PLASTIC)
         })?,
         acceleration,
         acceleration_depth_given: t.has("acceleration_depth"),

@@ -148,6 +148,7 @@ relaxation = 0.7
 on_nonconvergence = "continue"
 rhie_chow = 0
 rhie_chow_history = "accumulated"
+rhie_chow_plastic = "elastic"
 acceleration = "anderson"
 acceleration_depth = 8
 predictor = "linear"
@@ -189,6 +190,7 @@ fields = ["von_mises", "contact_pressure", "von_mises"]
             rhie_chow_given: true,
             max_outer_given: true,
             rhie_chow_history: fv_discretise::RhieChowHistory::Accumulated,
+            rhie_chow_plastic: fv_discretise::RhieChowPlastic::Elastic,
             acceleration: Acceleration::Anderson,
             acceleration_depth: 8,
             acceleration_depth_given: true,

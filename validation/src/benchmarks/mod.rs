@@ -69,14 +69,15 @@ pub fn pinned_segregated(text: &str) -> String {
 }
 
 /// The keys a case author tunes per case (issue 46): contact coupling,
-/// penalty scale, relaxation, Rhie–Chow factor, predictor and outer
-/// iteration cap. A case without them runs on the defaults a new user
-/// gets.
-pub const TUNING_KEYS: [&str; 6] = [
+/// penalty scale, relaxation, Rhie–Chow factor and its stiffness in
+/// plastic flow, predictor and outer iteration cap. A case without them
+/// runs on the defaults a new user gets.
+pub const TUNING_KEYS: [&str; 7] = [
     "coupling",
     "penalty_scale",
     "relaxation",
     "rhie_chow",
+    "rhie_chow_plastic",
     "predictor",
     "max_outer",
 ];

@@ -685,6 +685,39 @@ impl SolidMomentum {
         }
     }
 
+    /// After a converged solve of the increment: the cells that flowed in
+    /// it but kept the whole Rhie–Chow stiffness (they had not flowed in
+    /// the last increment: the increment where a body first yields) take
+    /// their share as well, and the solve is to be repeated; true when any
+    /// share changed. The shares only fall within an increment, so the
+    /// repetitions end. Without it the first yielding increment carried
+    /// the elastic term: a J2 block upset by 3 % in one increment on
+    /// 20 × 10 cells reacted 1,340 against CalculiX's 2,000.
+    pub fn follow_flow_of_increment(&mut self) -> bool {
+        if self.rc_cell_scale.is_empty() {
+            return false;
+        }
+        let StressLaw::UpdatedLagrangian { law, state } = &self.law else {
+            return false;
+        };
+        let mu3 = 3.0 * law.shear_modulus();
+        let mut changed = false;
+        for ((s, &e), &e0) in self
+            .rc_cell_scale
+            .iter_mut()
+            .zip(state.trial_equivalent_plastic_strain())
+            .zip(state.equivalent_plastic_strain())
+        {
+            if *s == 1.0 && e > e0 {
+                if let Some(h) = law.hardening_slope(e) {
+                    *s = (h / (mu3 + h)).clamp(PLASTIC_RC_SHARE_FLOOR, 1.0);
+                    changed |= *s < 1.0;
+                }
+            }
+        }
+        changed
+    }
+
     /// The Rhie–Chow share of internal face `f` (1 but in plastic bodies).
     #[inline]
     pub fn rc_face_scale(&self, mesh: &PolyMesh, f: usize) -> f64 {

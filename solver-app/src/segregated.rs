@@ -1612,6 +1612,18 @@ impl SegregatedSolver {
                 continue;
             }
             if residual < info.required && !info.contact_unsettled {
+                // the Rhie–Chow share of cells that began to flow in this
+                // increment (SolidMomentum::follow_flow_of_increment)
+                let mut flowed = false;
+                for b in bodies.iter_mut().filter(|b| !b.rigid) {
+                    flowed |= b.momentum.follow_flow_of_increment();
+                }
+                if flowed {
+                    if let Some(a) = &mut self.anderson {
+                        a.restart();
+                    }
+                    continue;
+                }
                 info.converged = true;
                 break;
             }

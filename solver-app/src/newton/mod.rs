@@ -600,6 +600,15 @@ impl crate::nonlinear_solver::NonlinearSolver for NewtonKrylovSolver {
             if contacts.augment(bodies) {
                 continue;
             }
+            // the Rhie–Chow share of cells that began to flow in this
+            // increment (SolidMomentum::follow_flow_of_increment)
+            let mut flowed = false;
+            for b in bodies.iter_mut().filter(|b| !b.rigid) {
+                flowed |= b.momentum.follow_flow_of_increment();
+            }
+            if flowed {
+                continue;
+            }
             break Ok(true);
         };
         if total.at_floor && matches!(outcome, Ok(true)) {

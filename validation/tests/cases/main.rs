@@ -23,6 +23,7 @@ mod large_strain;
 mod manufactured_solution;
 mod nafems_punch;
 mod parallel_cylinders;
+mod plastic_upsetting;
 mod punch_probe;
 mod rigid_cylinder;
 mod shallow_ironing;

@@ -220,7 +220,7 @@ fields = ["von_mises", "contact_pressure", "von_mises"]
         "\"all\"",
     ));
     assert_eq!(e.key.as_deref(), Some("output.fields"));
-    assert_eq!(c.source.line_of("solver.linear.method"), Some(21));
+    assert_eq!(c.source.line_of("solver.linear.method"), Some(22));
     let e = fail(&text.replace("\"accumulated\"", "\"total\""));
     assert_eq!(e.key.as_deref(), Some("solver.rhie_chow_history"));
     assert!(

@@ -1564,7 +1564,7 @@ fn check_reports_the_penalty_scale_of_each_contact_and_why() {
     let (code, out, err) = fvc(&["check", example.to_str().unwrap()]);
     assert_eq!(code, 0, "{out}{err}");
     assert!(
-        out.contains("contact[0] cylinder/contact on flat/ymax: penalty_scale 5 (not given; a curved surface on a rigid plane); augmentation off (not given; the plain penalty)"),
+        out.contains("contact[0] cylinder/contact on flat/ymax: algorithm segment-to-segment (not given; the thesis's); penalty_scale 5 (not given; a curved surface on a rigid plane); augmentation off (not given; the plain penalty)"),
         "{out}"
     );
     let dir = tempfile::tempdir().unwrap();
@@ -1575,7 +1575,7 @@ fn check_reports_the_penalty_scale_of_each_contact_and_why() {
     assert_eq!(code, 0, "{out}{err}");
     assert!(
         out.contains(
-            "contact[0] block/xmax on plate/ymin: penalty_scale 1 (not given; the thesis's)"
+            "contact[0] block/xmax on plate/ymin: algorithm segment-to-segment (not given; the thesis's); penalty_scale 1 (not given; the thesis's)"
         ),
         "{out}"
     );
@@ -1604,6 +1604,55 @@ fn check_reports_the_penalty_scale_of_each_contact_and_why() {
     let out = on_top(RIGID_PLATE);
     assert!(
         out.contains("augmentation on (not given; two flat faces"),
+        "{out}"
+    );
+}
+
+/// `check` names the contact algorithm and why: pointwise for friction on
+/// a plastic block under a flat rigid plate, the thesis's
+/// segment-to-segment without friction or for an elastic block, and the
+/// case's own when given.
+#[test]
+fn check_reports_the_contact_algorithm_and_why() {
+    let dir = tempfile::tempdir().unwrap();
+    let free_top = GOOD.replace(
+        "[body.boundary.ymax]\ntype = \"displacement\"\nvalue = { table = [[0.0, [0, 0, 0]], [1.0, [0, -0.01, 0]]] }\n",
+        "",
+    );
+    let plastic = free_top.replace(
+        "material = { model = \"linear-elastic\", E = 200.0, nu = 0.3 }\n[body.boundary",
+        "material = { model = \"neo-hookean-plastic\", E = 200.0, nu = 0.3, yield = 1, hardening = 1 }\n[body.boundary",
+    );
+    assert_ne!(plastic, free_top);
+    let check = |block: &str, contact: &str| {
+        let case = format!("{block}{RIGID_PLATE}")
+            + "[[contact]]\nmaster = \"plate/ymin\"\nslave = \"block/ymax\"\n"
+            + contact;
+        let p = write(dir.path(), "case.toml", case.as_bytes());
+        let (code, out, err) = fvc(&["check", p.to_str().unwrap()]);
+        assert_eq!(code, 0, "{out}{err}");
+        out
+    };
+    let out = check(&plastic, "friction = 0.1\n");
+    assert!(
+        out.contains(
+            "algorithm pointwise (not given; friction on a plastic slave against a flat master"
+        ),
+        "{out}"
+    );
+    for (block, contact) in [(&plastic, ""), (&free_top, "friction = 0.1\n")] {
+        let out = check(block, contact);
+        assert!(
+            out.contains("algorithm segment-to-segment (not given; the thesis's)"),
+            "{out}"
+        );
+    }
+    let out = check(
+        &plastic,
+        "friction = 0.1\nalgorithm = \"segment-to-segment\"\n",
+    );
+    assert!(
+        out.contains("algorithm segment-to-segment (given)"),
         "{out}"
     );
 }

@@ -14,8 +14,8 @@ use contact_detect::{
     CandidatePairs, DetectParams, DetectionMethod, Detector, PairReuse, DEFAULT_SKIN,
 };
 use contact_force::{
-    ContactAlgorithm, ContactAlgorithmKind, ContactLaw, ContactStats, ContactTractions, Coupling,
-    ExplicitRelaxation, GgiWeights, PenaltyParams, SurfaceContact, SurfaceMaterial, SymmetryPlane,
+    ContactAlgorithm, ContactLaw, ContactStats, ContactTractions, Coupling, ExplicitRelaxation,
+    GgiWeights, PenaltyParams, SurfaceContact, SurfaceMaterial, SymmetryPlane,
 };
 use fv_discretise::{LinearisedContact, PatchCondition};
 use fv_mesh::{CellToPoint, Surface, Vector};
@@ -949,8 +949,7 @@ impl ContactSet {
             let (sb, sp) = side(bodies, case, &format!("{key}.slave"), &c.slave)?;
             let algorithm_choice =
                 AlgorithmChoice::choose(c.algorithm, &c.friction, (&bodies[mb], mp), &bodies[sb]);
-            let kind = ContactAlgorithmKind::from_name(algorithm_choice.name())
-                .map_err(|e| src.error(&format!("{key}.algorithm"), e.to_string()))?;
+            let kind = algorithm_choice.value();
             let make_side = |b: usize, p: usize| -> Result<ContactSide, InputError> {
                 let surface = Surface::new(&bodies[b].mesh, p)
                     .map_err(|e| src.error(&key, format!("contact surface: {e}")))?;

@@ -5,19 +5,9 @@ use super::reader::{list, Node, Res};
 use super::values::{scalar_value, ScalarValue};
 use contact_force::SlipHistory;
 
-/// `contact.algorithm`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ContactAlgorithm {
-    /// `"segment-to-segment"` (the default but for friction on a plastic
-    /// slave, [`crate::contact_coupling::AlgorithmChoice`]).
-    SegmentToSegment,
-    /// `"pointwise"`.
-    Pointwise,
-    /// `"pointwise-nagata"`: pointwise on Nagata-smoothed surfaces.
-    PointwiseNagata,
-    /// `"segment-to-segment-nagata"`: segment-to-segment on Nagata-smoothed surfaces.
-    SegmentToSegmentNagata,
-}
+/// `contact.algorithm`: the library's algorithms, by their names
+/// (`contact_force::ContactAlgorithmKind`).
+pub use contact_force::ContactAlgorithmKind as ContactAlgorithm;
 
 /// `contact.coupling`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -80,16 +70,9 @@ impl Default for Augmentation {
 }
 
 /// `contact.algorithm` by name.
-pub(crate) const ALGORITHMS: [(&str, ContactAlgorithm); 4] = [
-    ("segment-to-segment", ContactAlgorithm::SegmentToSegment),
-    ("pointwise", ContactAlgorithm::Pointwise),
-    ("pointwise-nagata", ContactAlgorithm::PointwiseNagata),
-    (
-        "segment-to-segment-nagata",
-        ContactAlgorithm::SegmentToSegmentNagata,
-    ),
-];
-
+pub(crate) fn algorithms() -> [(&'static str, ContactAlgorithm); 4] {
+    ContactAlgorithm::ALL.map(|k| (k.name(), k))
+}
 /// `contact.coupling` by name.
 pub(crate) const COUPLINGS: [(&str, Coupling); 2] = [
     ("explicit", Coupling::Explicit),
@@ -253,7 +236,7 @@ pub(crate) fn contact(node: &Node<'_>, bodies: &[&str]) -> Res<ContactSpec> {
         master,
         slave,
         algorithm: t.opt("algorithm", None, |n| {
-            n.choice("contact algorithm", &ALGORITHMS).map(Some)
+            n.choice("contact algorithm", &algorithms()).map(Some)
         })?,
         coupling: t.opt("coupling", Coupling::Explicit, |n| {
             n.choice("coupling", &COUPLINGS)

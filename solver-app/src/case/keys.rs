@@ -254,7 +254,7 @@ pub fn accepted_names() -> Vec<AcceptedNames> {
             "type",
             super::BOUNDARY_TYPES.to_vec(),
         ),
-        n("contact", "algorithm", names(&contact::ALGORITHMS)),
+        n("contact", "algorithm", names(&contact::algorithms())),
         n("contact", "coupling", names(&contact::COUPLINGS)),
         n("contact", "detection", names(&contact::DETECTIONS)),
         n("contact", "slip_history", names(&contact::SLIP_HISTORIES)),

@@ -70,12 +70,7 @@ impl AlgorithmChoice {
 
     /// The case-file name of [`Self::value`].
     pub fn name(self) -> &'static str {
-        match self.value() {
-            ContactAlgorithm::SegmentToSegment => "segment-to-segment",
-            ContactAlgorithm::Pointwise => "pointwise",
-            ContactAlgorithm::PointwiseNagata => "pointwise-nagata",
-            ContactAlgorithm::SegmentToSegmentNagata => "segment-to-segment-nagata",
-        }
+        self.value().name()
     }
 
     /// The reason, for the log and `fvc check`.

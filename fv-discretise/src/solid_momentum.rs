@@ -83,6 +83,20 @@ pub enum RhieChowHistory {
     Accumulated,
 }
 
+impl RhieChowHistory {
+    /// Every variant, with its case-file name ([`Self::name`]).
+    pub const ALL: [RhieChowHistory; 2] =
+        [RhieChowHistory::Incremental, RhieChowHistory::Accumulated];
+
+    /// The case-file name.
+    pub fn name(self) -> &'static str {
+        match self {
+            RhieChowHistory::Incremental => "incremental",
+            RhieChowHistory::Accumulated => "accumulated",
+        }
+    }
+}
+
 /// The stiffness of the Rhie–Chow term in a plastic body
 /// ([`SolidMomentum::rhie_chow_plastic`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -94,6 +108,19 @@ pub enum RhieChowPlastic {
     Flow,
     /// The elastic stiffness everywhere, as in the thesis.
     Elastic,
+}
+
+impl RhieChowPlastic {
+    /// Every variant, with its case-file name ([`Self::name`]).
+    pub const ALL: [RhieChowPlastic; 2] = [RhieChowPlastic::Flow, RhieChowPlastic::Elastic];
+
+    /// The case-file name.
+    pub fn name(self) -> &'static str {
+        match self {
+            RhieChowPlastic::Flow => "flow",
+            RhieChowPlastic::Elastic => "elastic",
+        }
+    }
 }
 
 /// The temporal term of eq. (3.11): backward Euler on the cell

@@ -222,12 +222,12 @@ pub fn accepted_names() -> Vec<AcceptedNames> {
         n(
             "solver",
             "rhie_chow_history",
-            names(&settings::RHIE_CHOW_HISTORIES),
+            names(&settings::rhie_chow_histories()),
         ),
         n(
             "solver",
             "rhie_chow_plastic",
-            names(&settings::RHIE_CHOW_PLASTIC),
+            names(&settings::rhie_chow_plastic_names()),
         ),
         n("solver", "acceleration", names(&settings::ACCELERATIONS)),
         n("solver", "predictor", names(&settings::PREDICTORS)),

@@ -380,17 +380,15 @@ pub(crate) const ON_NONCONVERGENCE: [(&str, OnNonConvergence); 2] = [
     ("continue", OnNonConvergence::Continue),
 ];
 
-/// `solver.rhie_chow_plastic` by name.
-pub(crate) const RHIE_CHOW_PLASTIC: [(&str, RhieChowPlastic); 2] = [
-    ("flow", RhieChowPlastic::Flow),
-    ("elastic", RhieChowPlastic::Elastic),
-];
+/// `solver.rhie_chow_plastic` by name (the library's names).
+pub(crate) fn rhie_chow_plastic_names() -> [(&'static str, RhieChowPlastic); 2] {
+    RhieChowPlastic::ALL.map(|k| (k.name(), k))
+}
 
-/// `solver.rhie_chow_history` by name.
-pub(crate) const RHIE_CHOW_HISTORIES: [(&str, RhieChowHistory); 2] = [
-    ("incremental", RhieChowHistory::Incremental),
-    ("accumulated", RhieChowHistory::Accumulated),
-];
+/// `solver.rhie_chow_history` by name (the library's names).
+pub(crate) fn rhie_chow_histories() -> [(&'static str, RhieChowHistory); 2] {
+    RhieChowHistory::ALL.map(|k| (k.name(), k))
+}
 
 /// `solver.acceleration` by name.
 pub(crate) const ACCELERATIONS: [(&str, Acceleration); 2] = [
@@ -651,10 +649,13 @@ pub(crate) fn solver(
         })?,
         rhie_chow_given: t.has("rhie_chow"),
         rhie_chow_history: t.opt("rhie_chow_history", d.rhie_chow_history, |n| {
-            n.choice("Rhie–Chow history", &RHIE_CHOW_HISTORIES)
+            n.choice("Rhie–Chow history", &rhie_chow_histories())
         })?,
         rhie_chow_plastic: t.opt("rhie_chow_plastic", d.rhie_chow_plastic, |n| {
-            n.choice("Rhie–Chow stiffness in plastic flow", &RHIE_CHOW_PLASTIC)
+            n.choice(
+                "Rhie–Chow stiffness in plastic flow",
+                &rhie_chow_plastic_names(),
+            )
         })?,
         acceleration,
         acceleration_depth_given: t.has("acceleration_depth"),

@@ -671,6 +671,18 @@ fn rigid_motion_at(
     }
 }
 
+/// After a converged solve of the increment: the deformable bodies'
+/// cells that began to flow in it take their Rhie–Chow share
+/// (`SolidMomentum::follow_flow_of_increment`); true when the solve is to
+/// be repeated.
+pub fn follow_flow_of_increment(bodies: &mut [Body]) -> bool {
+    let mut flowed = false;
+    for b in bodies.iter_mut().filter(|b| !b.rigid) {
+        flowed |= b.momentum.follow_flow_of_increment();
+    }
+    flowed
+}
+
 /// Builds the bodies of a case from their specs and loaded meshes; checks
 /// patch names and the features this build supports.
 pub fn build_bodies(case: &Case, meshes: Vec<PolyMesh>) -> Result<Vec<Body>, InputError> {

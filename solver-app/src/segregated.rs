@@ -1613,12 +1613,8 @@ impl SegregatedSolver {
             }
             if residual < info.required && !info.contact_unsettled {
                 // the Rhie–Chow share of cells that began to flow in this
-                // increment (SolidMomentum::follow_flow_of_increment)
-                let mut flowed = false;
-                for b in bodies.iter_mut().filter(|b| !b.rigid) {
-                    flowed |= b.momentum.follow_flow_of_increment();
-                }
-                if flowed {
+                // increment
+                if crate::model::follow_flow_of_increment(bodies) {
                     if let Some(a) = &mut self.anderson {
                         a.restart();
                     }

@@ -601,12 +601,8 @@ impl crate::nonlinear_solver::NonlinearSolver for NewtonKrylovSolver {
                 continue;
             }
             // the Rhie–Chow share of cells that began to flow in this
-            // increment (SolidMomentum::follow_flow_of_increment)
-            let mut flowed = false;
-            for b in bodies.iter_mut().filter(|b| !b.rigid) {
-                flowed |= b.momentum.follow_flow_of_increment();
-            }
-            if flowed {
+            // increment
+            if crate::model::follow_flow_of_increment(bodies) {
                 continue;
             }
             break Ok(true);

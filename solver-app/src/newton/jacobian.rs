@@ -39,9 +39,41 @@ pub const LU_LIMIT_3D: usize = 2_000;
 /// (29,946 unknowns): the same, and 2.7 s factorised.
 pub const STALLED_LU_LIMIT_3D: usize = 100_000;
 
+/// How the assembled Jacobian is factorised.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum JacobianFactor {
+    /// Sparse LU (faer): exact, GMRES converges in a step or two; its
+    /// fill-in costs time and memory on 3-D meshes.
+    Lu,
+    /// ILU(0) on the Jacobian's own pattern: one pass to factorise, two
+    /// sweeps to apply; a few tens of Krylov iterations.
+    Ilu0,
+}
+
+impl JacobianFactor {
+    /// Exact up to [`LU_LIMIT`] unknowns, incomplete above (`"jacobian"`,
+    /// plane problems).
+    pub fn for_unknowns(unknowns: usize) -> Self {
+        if unknowns <= LU_LIMIT {
+            JacobianFactor::Lu
+        } else {
+            JacobianFactor::Ilu0
+        }
+    }
+}
+
 enum Factor {
     Lu(Box<DirectSolver>),
     Ilu(Box<BicgstabIlu0>),
+}
+
+impl Factor {
+    fn new(kind: JacobianFactor, n: usize) -> Self {
+        match kind {
+            JacobianFactor::Lu => Factor::Lu(Box::new(DirectSolver::new(DirectMethod::Lu))),
+            JacobianFactor::Ilu0 => Factor::Ilu(Box::new(BicgstabIlu0::new(n))),
+        }
+    }
 }
 
 /// −J of the state, assembled, and its factorisation.
@@ -81,7 +113,7 @@ fn global(body: &Body, layout: &StateLayout, bi: usize, node: StateNode) -> Opti
 
 impl AssembledJacobian {
     /// The pattern of the bodies (and of `extra` pairs), no values yet.
-    pub fn new(bodies: &[Body], layout: &StateLayout) -> Self {
+    pub fn new(bodies: &[Body], layout: &StateLayout, kind: JacobianFactor) -> Self {
         let mut solved = [0; 3];
         let mut n_solved = 0;
         for c in (0..3).filter(|&c| !layout.unsolved[c]) {
@@ -100,11 +132,7 @@ impl AssembledJacobian {
             extra: Vec::new(),
             scalar: CsrMatrix::from_faces(1, &[], &[]).0,
             scalar_slot: Vec::new(),
-            factor: if n_solved * layout.n_nodes <= LU_LIMIT {
-                Factor::Lu(Box::new(DirectSolver::new(DirectMethod::Lu)))
-            } else {
-                Factor::Ilu(Box::new(BicgstabIlu0::new(n_solved * layout.n_nodes)))
-            },
+            factor: Factor::new(kind, n_solved * layout.n_nodes),
             springs: Vec::new(),
             factorised: false,
         };
@@ -318,6 +346,22 @@ impl AssembledJacobian {
     /// Whether a factorisation is held.
     pub fn is_factorised(&self) -> bool {
         self.factorised
+    }
+
+    /// How it is factorised.
+    pub fn kind(&self) -> JacobianFactor {
+        match self.factor {
+            Factor::Lu(_) => JacobianFactor::Lu,
+            Factor::Ilu(_) => JacobianFactor::Ilu0,
+        }
+    }
+
+    /// Factorised as `kind` says from the next assembly on.
+    pub fn refactor_as(&mut self, kind: JacobianFactor) {
+        if self.kind() != kind {
+            self.factor = Factor::new(kind, self.n_solved * self.n_nodes);
+            self.factorised = false;
+        }
     }
 
     /// z = (−J)⁻¹ r (interleaved node-major vectors).

@@ -65,6 +65,11 @@ impl StateLayout {
         3 * self.n_nodes
     }
 
+    /// Number of solved unknowns (the solved components of every node).
+    pub fn solved_len(&self) -> usize {
+        self.unsolved.iter().filter(|u| !**u).count() * self.n_nodes
+    }
+
     /// Whether there are none.
     pub fn is_empty(&self) -> bool {
         self.n_nodes == 0

@@ -30,10 +30,10 @@ use fv_nonlinear::{
     Frozen, GmresParams, IterationReport, NewtonError, NewtonInfo, NewtonKrylov, NewtonParams,
     NonlinearProblem,
 };
-use jacobian::{AssembledJacobian, LU_LIMIT, LU_LIMIT_3D, STALLED_LU_LIMIT_3D};
+use jacobian::{AssembledJacobian, JacobianFactor, LU_LIMIT, LU_LIMIT_3D, STALLED_LU_LIMIT_3D};
 use layout::StateLayout;
 use preconditioning::{Preconditioning, SWITCH_KRYLOV_ITERATIONS};
-use residual::{mean_cell_size, stiffness_area, ModelProblem, ResidualWork};
+use residual::{mean_cell_size, stiffness_area, ModelProblem, ResidualWork, ILU_STALLS_BEFORE_LU};
 use segregated_operator::SegregatedOperator;
 use start::{FirstIterate, LastChange};
 
@@ -138,9 +138,11 @@ enum AutoSwitch {
     /// Krylov iterations: a plane problem up to [`LU_LIMIT`] unknowns, a
     /// 3-D one up to [`LU_LIMIT_3D`].
     BeyondKrylov,
-    /// After a Newton step whose Krylov solve used all its iterations: a
-    /// 3-D problem up to [`STALLED_LU_LIMIT_3D`] unknowns.
-    AfterStall,
+    /// A 3-D problem up to [`STALLED_LU_LIMIT_3D`] unknowns: after a Newton
+    /// step whose Krylov solve used all its iterations, the Jacobian
+    /// factorised by ILU(0); after [`residual::ILU_STALLS_BEFORE_LU`] such
+    /// solves in a row preconditioned by it, by LU.
+    Incomplete,
 }
 
 /// The switch of `"auto"` for the state's size, if any.
@@ -150,7 +152,7 @@ fn auto_switch(layout: &StateLayout) -> Option<AutoSwitch> {
     if unknowns <= if solved <= 2 { LU_LIMIT } else { LU_LIMIT_3D } {
         Some(AutoSwitch::BeyondKrylov)
     } else if solved > 2 && unknowns <= STALLED_LU_LIMIT_3D {
-        Some(AutoSwitch::AfterStall)
+        Some(AutoSwitch::Incomplete)
     } else {
         None
     }
@@ -170,7 +172,7 @@ pub fn auto_preconditioner_report(bodies: &[Body], contacts: &ContactSet) -> Str
         (false, n) => {
             let switch = match auto_switch(&layout) {
                 Some(AutoSwitch::BeyondKrylov) => format!(", switched to the assembled Jacobian (factorised) after a Newton step that needs more than {SWITCH_KRYLOV_ITERATIONS} Krylov iterations"),
-                Some(AutoSwitch::AfterStall) => ", switched to the assembled Jacobian (factorised) after a Newton step whose Krylov solve used all its iterations".to_string(),
+                Some(AutoSwitch::Incomplete) => format!(", switched to the assembled Jacobian (ILU(0)) after a Newton step whose Krylov solve used all its iterations, and to its LU after {ILU_STALLS_BEFORE_LU} such steps in a row with the ILU(0)"),
                 None => String::new(),
             };
             format!(
@@ -206,6 +208,9 @@ pub struct NewtonKrylovSolver {
     /// from one [`FirstIterate`] is tried from the other before it is cut
     /// back.
     plastic: bool,
+    /// Whether the Jacobian is factorised by LU for the current step only,
+    /// after its ILU(0) stalled ([`AutoSwitch::Incomplete`]).
+    exact_rescue: bool,
     /// The first iterate the last such retry converged from.
     preferred_start: FirstIterate,
     last_change: LastChange,
@@ -281,7 +286,13 @@ impl NewtonKrylovSolver {
             attempt_params,
             final_attempt_params,
             operator: SegregatedOperator::new(bodies, &layout, direct),
-            jacobian: start_with_jacobian.then(|| AssembledJacobian::new(bodies, &layout)),
+            jacobian: start_with_jacobian.then(|| {
+                AssembledJacobian::new(
+                    bodies,
+                    &layout,
+                    JacobianFactor::for_unknowns(layout.solved_len()),
+                )
+            }),
             preconditioning,
             work: ResidualWork::new(bodies, &layout),
             params: MomentumParams {
@@ -294,6 +305,7 @@ impl NewtonKrylovSolver {
             stiffness_area: stiffness_area(bodies),
             notes,
             plastic,
+            exact_rescue: false,
             preferred_start: FirstIterate::Tangent,
             last_change: LastChange::default(),
             layout,
@@ -356,7 +368,11 @@ impl NewtonKrylovSolver {
             preconditioner: &mut self.operator,
             jacobian: &mut self.jacobian,
             switch_after: None,
+            switch_factor: JacobianFactor::Lu,
             switched: None,
+            exact_after: None,
+            ilu_stalls: 0,
+            made_exact: None,
             times: &mut self.times,
             reference: 0.0,
             changes: 0,
@@ -381,19 +397,41 @@ impl NewtonKrylovSolver {
     /// increments, at most 36 Newton iterations, 10.9 s against 22.1 s
     /// switching to it.
     ///
-    /// A larger 3-D system, up to [`STALLED_LU_LIMIT_3D`] unknowns, is
-    /// factorised only after a Krylov solve that used all its iterations.
+    /// A larger 3-D system, up to [`STALLED_LU_LIMIT_3D`] unknowns, switches
+    /// after a Krylov solve that used all its iterations, to the Jacobian
+    /// factorised by ILU(0), and to its LU only after
+    /// [`residual::ILU_STALLS_BEFORE_LU`] such solves in a row
+    /// preconditioned by the ILU(0) ([`AutoSwitch::Incomplete`]). Measured on the coarse wire
+    /// drawing with the flow share of the Rhie–Chow term (5,280 cells,
+    /// 19,416 unknowns; first 12 increments, one thread): the segregated
+    /// operator stalls at 200 Krylov iterations in the third; with the LU
+    /// from then on 1.6–4.8 s per increment (7–10 Newton, 50–80 Krylov
+    /// iterations), with the ILU(0) 0.5–0.9 s (8–15 Newton, 76–255 Krylov).
+    ///
     /// Returns the Krylov iterations of a Newton step beyond which to
-    /// switch, if the switch may happen.
-    fn switch_after(&self) -> Option<usize> {
+    /// switch and the factor switched to, if the switch may happen.
+    fn switch_after(&self) -> Option<(usize, JacobianFactor)> {
         if self.preconditioning != Preconditioning::Auto || self.jacobian.is_some() {
             return None;
         }
         let cap = self.newton.krylov_params().max_iterations;
         match auto_switch(&self.layout)? {
-            AutoSwitch::BeyondKrylov => Some(SWITCH_KRYLOV_ITERATIONS),
-            AutoSwitch::AfterStall => Some(cap.saturating_sub(1).max(SWITCH_KRYLOV_ITERATIONS)),
+            AutoSwitch::BeyondKrylov => Some((SWITCH_KRYLOV_ITERATIONS, JacobianFactor::Lu)),
+            AutoSwitch::Incomplete => Some((
+                cap.saturating_sub(1).max(SWITCH_KRYLOV_ITERATIONS),
+                JacobianFactor::Ilu0,
+            )),
         }
+    }
+
+    /// The Krylov iterations of a Newton step beyond which `"auto"`
+    /// counts a solve preconditioned by the ILU(0) of the Jacobian as
+    /// stalled: one that used all its iterations ([`AutoSwitch::Incomplete`],
+    /// [`residual::ILU_STALLS_BEFORE_LU`]).
+    fn exact_after(&self) -> Option<usize> {
+        (self.preconditioning == Preconditioning::Auto
+            && matches!(auto_switch(&self.layout), Some(AutoSwitch::Incomplete)))
+        .then(|| self.newton.krylov_params().max_iterations.saturating_sub(1))
     }
 
     /// The Newton solve of the current first iterate, its counts added to
@@ -406,9 +444,14 @@ impl NewtonKrylovSolver {
         on_iteration: &mut dyn FnMut(usize, f64) -> ControlFlow<()>,
     ) -> Result<NewtonInfo, NewtonError> {
         let switch_after = self.switch_after();
+        let exact_after = self.exact_after();
         let mut x = std::mem::take(&mut self.x);
         let (newton, mut problem) = self.newton_and_problem(bodies, contacts);
-        problem.switch_after = switch_after;
+        if let Some((k, factor)) = switch_after {
+            problem.switch_after = Some(k);
+            problem.switch_factor = factor;
+        }
+        problem.exact_after = exact_after;
         let done = total.iterations;
         let trace = std::env::var_os("FVC_TRACE").is_some();
         let result = newton.solve(&mut problem, &mut x, &mut |r| {
@@ -422,11 +465,23 @@ impl NewtonKrylovSolver {
             }
         });
         newton.release_krylov_pages();
-        let switched = problem.switched;
+        let (switched, switch_factor, made_exact) =
+            (problem.switched, problem.switch_factor, problem.made_exact);
         self.x = x;
         if let Some(krylov) = switched {
+            let factor = match switch_factor {
+                JacobianFactor::Lu => "",
+                JacobianFactor::Ilu0 => ", factorised by ILU(0),",
+            };
             self.notes.push(format!(
-                "t = {:.6e}: a Newton step needed {krylov} Krylov iterations with the segregated operator as preconditioner; the assembled Jacobian preconditions from the next step on ([solver] linear.preconditioner = \"auto\")",
+                "t = {:.6e}: a Newton step needed {krylov} Krylov iterations with the segregated operator as preconditioner; the assembled Jacobian{factor} preconditions from the next step on ([solver] linear.preconditioner = \"auto\")",
+                self.step_times.1
+            ));
+        }
+        if let Some(krylov) = made_exact {
+            self.exact_rescue = true;
+            self.notes.push(format!(
+                "t = {:.6e}: {ILU_STALLS_BEFORE_LU} Newton steps in a row needed {krylov} Krylov iterations with the ILU(0) of the assembled Jacobian as preconditioner; its LU preconditions from the next Newton step to the end of the step ([solver] linear.preconditioner = \"auto\")",
                 self.step_times.1
             ));
         }
@@ -490,10 +545,13 @@ impl crate::nonlinear_solver::NonlinearSolver for NewtonKrylovSolver {
     /// switched to it; a plastic body's increments keep their first
     /// iterate and the last change.
     fn save_state(&self, out: &mut fv_mesh::StateArrays) {
-        out.put_scalar(
-            "solver/assembled_jacobian".into(),
-            f64::from(u8::from(self.jacobian.is_some())),
-        );
+        // 0: none, 1: LU, 2: ILU(0)
+        let jacobian = match self.jacobian.as_ref().map(|j| j.kind()) {
+            None => 0.0,
+            Some(JacobianFactor::Lu) if !self.exact_rescue => 1.0,
+            Some(_) => 2.0,
+        };
+        out.put_scalar("solver/assembled_jacobian".into(), jacobian);
         self.last_change
             .save_state("solver/last_change", self.preferred_start, out);
     }
@@ -501,8 +559,14 @@ impl crate::nonlinear_solver::NonlinearSolver for NewtonKrylovSolver {
     fn restore_state(&mut self, bodies: &[Body], s: &fv_mesh::StateArrays) -> Result<(), String> {
         let name = "solver/assembled_jacobian";
         // a state written by the segregated method: nothing to restore
-        if s.has(name) && s.scalar(name)? != 0.0 && self.jacobian.is_none() {
-            self.jacobian = Some(AssembledJacobian::new(bodies, &self.layout));
+        let saved = if s.has(name) { s.scalar(name)? } else { 0.0 };
+        if saved != 0.0 && self.jacobian.is_none() {
+            let factor = if saved == 2.0 {
+                JacobianFactor::Ilu0
+            } else {
+                JacobianFactor::Lu
+            };
+            self.jacobian = Some(AssembledJacobian::new(bodies, &self.layout, factor));
         }
         self.preferred_start =
             self.last_change
@@ -636,6 +700,12 @@ impl crate::nonlinear_solver::NonlinearSolver for NewtonKrylovSolver {
         info.converged = outcome?;
         if info.converged {
             contacts.commit_increment();
+            if std::mem::take(&mut self.exact_rescue) {
+                // the LU served the hard step; the ILU(0) the next ones
+                if let Some(j) = self.jacobian.as_mut() {
+                    j.refactor_as(JacobianFactor::Ilu0);
+                }
+            }
             if retried && start != self.preferred_start {
                 self.notes.push(format!(
                     "t = {:.6e}: the Newton solve failed from {} and converged from {}, which starts the next increments (a plastic body; docs/newton-krylov.md, \"First iterate\")",

@@ -5,7 +5,7 @@
 //! Rhie–Chow term, boundary conditions and contact tractions as the
 //! segregated method, with the boundary values and contact tractions
 //! computed from x inside the call.
-use super::jacobian::AssembledJacobian;
+use super::jacobian::{AssembledJacobian, JacobianFactor};
 use super::layout::StateLayout;
 use super::preconditioning::JACOBIAN_REUSE_KRYLOV;
 use super::segregated_operator::SegregatedOperator;
@@ -36,6 +36,26 @@ use std::time::Instant;
 const PENETRATION_LIMIT: f64 = 1.0;
 /// See [`PENETRATION_LIMIT`].
 const PENETRATION_GROWTH: f64 = 1.5;
+
+/// Newton steps in a row whose Krylov solves, preconditioned by the ILU(0)
+/// of the assembled Jacobian, use all their iterations before `"auto"`
+/// factorises the Jacobian exactly. A tetrahedral cantilever (3,609 cells)
+/// stalls at every step (the linear residual 0.6–1.0 after 200 Krylov
+/// iterations: the incomplete factor misses the bending) and needs the LU;
+/// the coarse wire drawing in plastic flow reached the limit once in a
+/// failed attempt (0.13 against a forcing term of 0.1) and ran on well
+/// with the ILU(0).
+pub const ILU_STALLS_BEFORE_LU: usize = 2;
+
+/// The Jacobian factorised by ILU(0) is kept for the next Newton step
+/// while the last linear solve needed at most this many Krylov iterations
+/// (the LU: [`JACOBIAN_REUSE_KRYLOV`]). Its solves take 10–40 iterations
+/// where the LU's take a few, and most of its cost is the assembly of the
+/// blocks, not the factorisation. Measured with 15 / 60, one thread:
+/// sphere on a block at ε_n/E = 1000 7.0 / 5.3 s (17 Newton iterations
+/// both, 513 / 492 Krylov), coarse wire drawing with the flow share of the
+/// Rhie–Chow term 92 / 71 s (steady force 290.82 / 290.83 N).
+pub const ILU_REUSE_KRYLOV: usize = 60;
 
 /// The force scale is at least this fraction of Σ K |Γ| over the bodies'
 /// boundary faces (a state at rest, with nothing loaded).
@@ -147,8 +167,19 @@ pub struct ModelProblem<'a> {
     /// iterations than this makes the assembled Jacobian precondition from
     /// the next step on (`None`: never).
     pub switch_after: Option<usize>,
+    /// How the Jacobian switched to is factorised.
+    pub switch_factor: JacobianFactor,
     /// The Krylov iterations that made it switch, if it did.
     pub switched: Option<usize>,
+    /// `"auto"`: [`ILU_STALLS_BEFORE_LU`] Newton steps in a row whose
+    /// linear solves needed more Krylov iterations than this with the
+    /// ILU(0) of the assembled Jacobian make its LU precondition from the
+    /// next step on (`None`: never).
+    pub exact_after: Option<usize>,
+    /// Consecutive Newton steps beyond `exact_after` with the ILU(0).
+    pub ilu_stalls: usize,
+    /// The Krylov iterations that made it factorise exactly, if it did.
+    pub made_exact: Option<usize>,
     /// Seconds per phase.
     pub times: &'a mut PhaseTimes,
     /// Force scale of the last renewed evaluation.
@@ -392,17 +423,46 @@ impl NonlinearProblem for ModelProblem<'_> {
             (self.jacobian.as_ref(), self.switch_after, last_krylov)
         {
             if k > limit {
-                *self.jacobian = Some(AssembledJacobian::new(self.bodies, self.layout));
+                *self.jacobian = Some(AssembledJacobian::new(
+                    self.bodies,
+                    self.layout,
+                    self.switch_factor,
+                ));
                 self.switched = Some(k);
             }
         }
-        let reuse = last_krylov.is_some_and(|k| k <= JACOBIAN_REUSE_KRYLOV);
+        if let (Some(j), Some(limit), Some(k)) =
+            (self.jacobian.as_mut(), self.exact_after, last_krylov)
+        {
+            if j.kind() == JacobianFactor::Ilu0 {
+                self.ilu_stalls = if k > limit { self.ilu_stalls + 1 } else { 0 };
+                if self.ilu_stalls >= ILU_STALLS_BEFORE_LU {
+                    j.refactor_as(JacobianFactor::Lu);
+                    self.made_exact = Some(k);
+                }
+            }
+        }
+        let reuse_limit = match self.jacobian.as_ref().map(|j| j.kind()) {
+            Some(JacobianFactor::Ilu0) => ILU_REUSE_KRYLOV,
+            _ => JACOBIAN_REUSE_KRYLOV,
+        };
+        let reuse = last_krylov.is_some_and(|k| k <= reuse_limit);
         let r = match self.jacobian.as_mut() {
             // the assembled Jacobian is costly to factorise: kept while it
             // serves (an older Jacobian still preconditions the products of
             // the current one)
             Some(j) if reuse && j.is_factorised() => Ok(()),
-            Some(j) => j.assemble(self.bodies, self.contacts, self.layout, &self.params),
+            Some(j) => {
+                let r = j.assemble(self.bodies, self.contacts, self.layout, &self.params);
+                if r.is_err() && self.exact_after.is_some() && j.kind() == JacobianFactor::Ilu0 {
+                    // an ILU(0) that no diagonal shift keeps regular
+                    j.refactor_as(JacobianFactor::Lu);
+                    self.made_exact = Some(last_krylov.unwrap_or(0));
+                    j.assemble(self.bodies, self.contacts, self.layout, &self.params)
+                } else {
+                    r
+                }
+            }
             None => self
                 .preconditioner
                 .assemble(self.bodies, self.contacts, self.layout),

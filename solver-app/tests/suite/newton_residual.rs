@@ -197,7 +197,9 @@ fn assembled_against_products(text: &str, seed: u64, x_scale: f64) -> f64 {
     let n = solver.state_len();
     let layout = solver.layout().clone();
     let mut jac = Some(solver_app::newton::jacobian::AssembledJacobian::new(
-        &bodies, &layout,
+        &bodies,
+        &layout,
+        solver_app::newton::jacobian::JacobianFactor::Lu,
     ));
     let mut p = solver.problem(&mut bodies, &mut contacts);
     p.jacobian = &mut jac;

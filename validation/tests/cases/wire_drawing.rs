@@ -78,6 +78,25 @@ fn wire_drawing_coarse_force_between_thesis_coarse_and_richardson() {
     );
 }
 
+/// The coarse wire as a new user runs it: no tuning keys, so the
+/// Rhie–Chow term keeps only the flow's share in the flowing cells
+/// (`rhie_chow_plastic = "flow"`, the default). The steady force comes
+/// nearer 282.8 N than with the shipped elastic term (measured 290.83 N,
+/// largest deviation 2.69 %, median 9 / largest 24 Newton iterations,
+/// 71 s on one thread: the segregated operator gives way to the Jacobian's
+/// ILU(0) at the third increment); its oscillation is over the thesis's
+/// 1.8 %, which is why the case file keeps the elastic term.
+#[test]
+#[ignore = "about 70 s: cargo test --release -p validation --test cases wire_drawing_coarse_without -- --ignored --nocapture"]
+fn wire_drawing_coarse_without_tuning_keys() {
+    let r = run_edited(WireMesh::Coarse, |t| {
+        validation::benchmarks::strip_tuning_keys(&t)
+    });
+    let (mean, dev) = coarse_run_within_bounds("coarse, no tuning keys", &r);
+    assert!(mean < 295.0, "steady force {mean} N");
+    assert!(dev < 0.03, "coarse force deviates by {dev} from its mean");
+}
+
 /// The two nonlinear methods on the coarse wire: the thesis's segregated
 /// method (307.2 N, deviation 1.2 %, 144 outer iterations per increment,
 /// 40 s alone) and the default Newton–Krylov agree on the steady force within

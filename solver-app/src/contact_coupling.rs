@@ -22,6 +22,7 @@ use fv_mesh::{CellToPoint, Surface, Vector};
 
 mod algorithm_choice;
 mod augmentation_choice;
+mod friction_stiffness;
 mod frictionless_support;
 mod penalty_scale;
 mod restart;
@@ -29,6 +30,7 @@ mod state_evaluation;
 
 pub use algorithm_choice::AlgorithmChoice;
 pub use augmentation_choice::AugmentationChoice;
+pub use friction_stiffness::{friction_normal_coupling, friction_stiffness};
 pub use frictionless_support::frictionless_slide;
 pub use penalty_scale::PenaltyScale;
 

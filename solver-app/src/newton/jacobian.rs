@@ -2,7 +2,9 @@
 //! bodies' blocks (`SolidMomentum::jacobian_blocks`, the exact
 //! linearisation of the discretisation with finite-difference material
 //! tangents) and the contact penalty springs of the last evaluation, as
-//! full 3 × 3 tensors, factorised by sparse LU (faer) or, for large
+//! full 3 × 3 tensors (friction by its state: `friction_stiffness` and,
+//! where a face slips, `friction_normal_coupling` of
+//! [`crate::contact_coupling`]), factorised by sparse LU (faer) or, for large
 //! systems, ILU(0). Where the segregated operator ignores how the
 //! displacement components couple — the bending of a slender body, whose
 //! shear-free rotation the component Laplacian resists at full stiffness —
@@ -285,10 +287,9 @@ impl AssembledJacobian {
         for ci in &contacts.interfaces {
             let eps = ci.normal_penalty();
             let eps_t = ci.tangential_penalty();
-            let tensor = |n: &Vector, scale: f64| {
-                let nn = n * n.transpose();
-                (nn * eps + (Tensor::identity() - nn) * eps_t) * scale
-            };
+            let friction = crate::contact_coupling::friction_stiffness;
+            let tensor =
+                |n: &Vector, kt: Tensor, scale: f64| (n * n.transpose() * eps + kt) * scale;
             let beta = crate::contact_coupling::linearised_fraction;
             let (mb, sb) = (ci.master.body, ci.slave.body);
             if bodies[mb].rigid || bodies[sb].rigid {
@@ -307,10 +308,12 @@ impl AssembledJacobian {
                             continue;
                         }
                         if let Some(node) = layout.face_node(side.body, start + i) {
-                            let k = tensor(
-                                &side.surface.face_normals[i],
-                                side.surface.face_mag[i] * be,
-                            );
+                            let n = side.surface.face_normals[i];
+                            let kt = friction(contact, i, &n, eps_t)
+                                + crate::contact_coupling::friction_normal_coupling(
+                                    contact, i, &n, eps,
+                                );
+                            let k = tensor(&n, kt, side.surface.face_mag[i] * be);
                             self.springs.push((node as u32, node as u32, k));
                         }
                     }
@@ -335,8 +338,11 @@ impl AssembledJacobian {
                         continue;
                     };
                     if w > 0.0 {
+                        // between two deformable bodies the sticking spring
+                        // whatever the state (`friction_stiffness`)
+                        let kt = (Tensor::identity() - normal * normal.transpose()) * eps_t;
                         self.springs
-                            .push((nm as u32, ns as u32, tensor(&normal, be * w)));
+                            .push((nm as u32, ns as u32, tensor(&normal, kt, be * w)));
                     }
                 }
             }

@@ -7,10 +7,13 @@
 //! A traction-type face is a node of its own joined to its owner cell by
 //! the half-cell coefficient a_b = K|Γ|/|d_n|: eliminated, it gives the
 //! owner nothing (a free face), as the segregated matrix has it. A contact
-//! face against a rigid body adds ε_n β|Γ| (n_c² normal, ε_t β|Γ| (1 − n_c²)
-//! tangential when there is friction) to its node's diagonal; two
-//! deformable faces that overlap by the GGI area ω are joined by a spring
-//! ε_n β ω. Eliminating the face nodes gives the springs in series with the
+//! face against a rigid body adds ε_n β|Γ| n_c² and, with friction, the
+//! component's diagonal of the friction stiffness β|Γ| K_t (the tangential
+//! penalty where the face sticks, the return map's derivative where it
+//! slips: [`crate::contact_coupling::friction_stiffness`]) to its node's
+//! diagonal; two deformable faces that overlap by the GGI area ω are
+//! joined by a spring ε_n β ω (ε_t β ω across the normal with friction).
+//! Eliminating the face nodes gives the springs in series with the
 //! half cells, the cell coupling of implicit contact (eqs. 4.54, 4.63–4.72).
 //! The matrix approximates −J: F(x + δ) ≈ F(x) − P δ.
 use super::layout::StateLayout;
@@ -20,7 +23,6 @@ use fv_discretise::{
     CsrMatrix, DirectMethod, DirectSolver, FaceSlots, LinearSolverError, PatchCondition, PcgAmg,
     PcgIc0,
 };
-use fv_mesh::Vector;
 
 /// Each application solves the operator of every component by IC(0)-PCG
 /// to this relative residual (Newton's GMRES is flexible: the inner solve
@@ -111,8 +113,9 @@ pub struct SegregatedOperator {
     slots: FaceSlots,
     /// Coefficient of every link.
     link_coefficient: Vec<f64>,
-    /// Contact springs between face nodes: (node a, node b, k_n, k_t, normal).
-    springs: Vec<(u32, u32, f64, f64, Vector)>,
+    /// Contact springs between face nodes: (node a, node b, the diagonal
+    /// of the spring tensor k_n n⊗n + K_t per component).
+    springs: Vec<(u32, u32, [f64; 3])>,
     spring_entries: Vec<(u32, u32)>,
     spring_slots: Vec<u32>,
     /// Diagonal per component (workspace), node numbering.
@@ -361,6 +364,7 @@ impl SegregatedOperator {
             let eps_t = ci.tangential_penalty();
             let (mb, sb) = (ci.master.body, ci.slave.body);
             let beta = crate::contact_coupling::linearised_fraction;
+            let friction = crate::contact_coupling::friction_stiffness;
             if bodies[mb].rigid || bodies[sb].rigid {
                 for (side, contact) in [
                     (&ci.master, &ci.tractions.master),
@@ -381,9 +385,9 @@ impl SegregatedOperator {
                         };
                         let a = side.surface.face_mag[i] * be;
                         let n = side.surface.face_normals[i];
+                        let kt = friction(contact, i, &n, eps_t);
                         for c in 0..3 {
-                            let nc2 = n[c] * n[c];
-                            self.diagonal[c][node] += a * (eps * nc2 + eps_t * (1.0 - nc2));
+                            self.diagonal[c][node] += a * (eps * n[c] * n[c] + kt[(c, c)]);
                         }
                         self.held[side.body] = [true; 3];
                     }
@@ -410,8 +414,13 @@ impl SegregatedOperator {
                     if !(w > 0.0) {
                         continue;
                     }
-                    self.springs
-                        .push((nm as u32, ns as u32, eps * be * w, eps_t * be * w, normal));
+                    // between two deformable bodies the sticking spring
+                    // whatever the state (`friction_stiffness`)
+                    let k = [0, 1, 2].map(|c| {
+                        let nc2 = normal[c] * normal[c];
+                        (eps * nc2 + eps_t * (1.0 - nc2)) * be * w
+                    });
+                    self.springs.push((nm as u32, ns as u32, k));
                     self.held[mb] = [true; 3];
                     self.held[sb] = [true; 3];
                 }
@@ -465,9 +474,8 @@ impl SegregatedOperator {
 }
 
 /// Component c of a spring's tensor k_n n⊗n + k_t (I − n⊗n), diagonal.
-fn spring_component(s: &(u32, u32, f64, f64, Vector), c: usize) -> f64 {
-    let nc2 = s.4[c] * s.4[c];
-    s.2 * nc2 + s.3 * (1.0 - nc2)
+fn spring_component(s: &(u32, u32, [f64; 3]), c: usize) -> f64 {
+    s.2[c]
 }
 
 /// The inverse of one component's matrix.

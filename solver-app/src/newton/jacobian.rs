@@ -38,8 +38,18 @@ pub const LU_LIMIT_3D: usize = 2_000;
 /// 455 cells, 2,439 unknowns, tip shear): every Newton step at 200 Krylov
 /// iterations with the linear residual at 0.9–1.0, and the increment
 /// failed; factorised, 1 Newton iteration (0.09 s). Meshes of 9,982 cells
-/// (29,946 unknowns): the same, and 2.7 s factorised.
+/// (29,946 unknowns): the same, and 2.7 s factorised. Since 2026-12-01 the
+/// switch factorises by ILU(0) first, and by LU only up to
+/// [`RESCUE_LU_LIMIT_3D`].
 pub const STALLED_LU_LIMIT_3D: usize = 100_000;
+
+/// Unknowns up to which a 3-D problem whose Krylov solves stall with the
+/// ILU(0) of the Jacobian is given its LU for the rest of the step. The
+/// tetrahedral cantilevers need it (up to 29,946 unknowns, 2.7 s); the
+/// sphere on a block at `penalty_scale = 100` (65,856 unknowns) stalls
+/// with either factor, and its LU held 2.3 GB and ran for over 10 minutes
+/// without finishing the increment.
+pub const RESCUE_LU_LIMIT_3D: usize = 30_000;
 
 /// How the assembled Jacobian is factorised.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -30,7 +30,10 @@ use fv_nonlinear::{
     Frozen, GmresParams, IterationReport, NewtonError, NewtonInfo, NewtonKrylov, NewtonParams,
     NonlinearProblem,
 };
-use jacobian::{AssembledJacobian, JacobianFactor, LU_LIMIT, LU_LIMIT_3D, STALLED_LU_LIMIT_3D};
+use jacobian::{
+    AssembledJacobian, JacobianFactor, LU_LIMIT, LU_LIMIT_3D, RESCUE_LU_LIMIT_3D,
+    STALLED_LU_LIMIT_3D,
+};
 use layout::StateLayout;
 use preconditioning::{Preconditioning, SWITCH_KRYLOV_ITERATIONS};
 use residual::{mean_cell_size, stiffness_area, ModelProblem, ResidualWork, ILU_STALLS_BEFORE_LU};
@@ -172,7 +175,8 @@ pub fn auto_preconditioner_report(bodies: &[Body], contacts: &ContactSet) -> Str
         (false, n) => {
             let switch = match auto_switch(&layout) {
                 Some(AutoSwitch::BeyondKrylov) => format!(", switched to the assembled Jacobian (factorised) after a Newton step that needs more than {SWITCH_KRYLOV_ITERATIONS} Krylov iterations"),
-                Some(AutoSwitch::Incomplete) => format!(", switched to the assembled Jacobian (ILU(0)) after a Newton step whose Krylov solve used all its iterations, and to its LU after {ILU_STALLS_BEFORE_LU} such steps in a row with the ILU(0)"),
+                Some(AutoSwitch::Incomplete) if n <= RESCUE_LU_LIMIT_3D => format!(", switched to the assembled Jacobian (ILU(0)) after a Newton step whose Krylov solve used all its iterations, and to its LU after {ILU_STALLS_BEFORE_LU} such steps in a row with the ILU(0)"),
+                Some(AutoSwitch::Incomplete) => ", switched to the assembled Jacobian (ILU(0)) after a Newton step whose Krylov solve used all its iterations".to_string(),
                 None => String::new(),
             };
             format!(
@@ -427,9 +431,11 @@ impl NewtonKrylovSolver {
     /// The Krylov iterations of a Newton step beyond which `"auto"`
     /// counts a solve preconditioned by the ILU(0) of the Jacobian as
     /// stalled: one that used all its iterations ([`AutoSwitch::Incomplete`],
-    /// [`residual::ILU_STALLS_BEFORE_LU`]).
+    /// [`residual::ILU_STALLS_BEFORE_LU`]); none above
+    /// [`RESCUE_LU_LIMIT_3D`] unknowns.
     fn exact_after(&self) -> Option<usize> {
         (self.preconditioning == Preconditioning::Auto
+            && self.layout.solved_len() <= RESCUE_LU_LIMIT_3D
             && matches!(auto_switch(&self.layout), Some(AutoSwitch::Incomplete)))
         .then(|| self.newton.krylov_params().max_iterations.saturating_sub(1))
     }

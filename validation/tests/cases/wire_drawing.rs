@@ -82,7 +82,7 @@ fn wire_drawing_coarse_force_between_thesis_coarse_and_richardson() {
 /// Rhie–Chow term keeps only the flow's share in the flowing cells
 /// (`rhie_chow_plastic = "flow"`, the default). The steady force comes
 /// nearer 282.8 N than with the shipped elastic term (measured 290.83 N,
-/// largest deviation 2.69 %, median 9 / largest 24 Newton iterations,
+/// largest deviation 2.69 %, median 9 / largest 24–28 Newton iterations,
 /// 71 s on one thread: the segregated operator gives way to the Jacobian's
 /// ILU(0) at the third increment); its oscillation is over the thesis's
 /// 1.8 %, which is why the case file keeps the elastic term.

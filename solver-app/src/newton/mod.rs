@@ -116,7 +116,7 @@ pub const STIFF_PENALTY_SCALE: f64 = 100.0;
 /// solved unknowns.
 fn auto_starts_assembled(layout: &StateLayout, contacts: &ContactSet) -> (bool, usize) {
     let solved = layout.unsolved.iter().filter(|u| !**u).count();
-    let unknowns = solved * layout.n_nodes;
+    let unknowns = layout.solved_len();
     let limit = if stiff_contact(contacts) {
         LU_LIMIT
     } else {
@@ -151,7 +151,7 @@ enum AutoSwitch {
 /// The switch of `"auto"` for the state's size, if any.
 fn auto_switch(layout: &StateLayout) -> Option<AutoSwitch> {
     let solved = layout.unsolved.iter().filter(|u| !**u).count();
-    let unknowns = solved * layout.n_nodes;
+    let unknowns = layout.solved_len();
     if unknowns <= if solved <= 2 { LU_LIMIT } else { LU_LIMIT_3D } {
         Some(AutoSwitch::BeyondKrylov)
     } else if solved > 2 && unknowns <= STALLED_LU_LIMIT_3D {

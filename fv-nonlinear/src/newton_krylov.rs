@@ -521,6 +521,7 @@ impl NewtonKrylov {
                 info.converged = true;
                 return Ok(info);
             }
+            problem.set_shift(continuation.map_or(0.0, |c| c.sigma()));
             if let Err(e) = problem.prepare_preconditioner(x, last_krylov) {
                 return Err(NewtonError::Preconditioner {
                     iteration: k,

@@ -51,6 +51,15 @@ pub trait NonlinearProblem {
     /// Jacobian products (`x` itself may be zero).
     fn typical_size(&self) -> f64;
 
+    /// The pseudo-transient shift σ of the next linear solve (0: Newton),
+    /// set before [`Self::prepare_preconditioner`]: the operator is then
+    /// −J + σ D ([`Self::damping`]), and a preconditioner built from −J
+    /// alone misses σ D exactly where the shift acts, along the soft modes
+    /// of −J (there P⁻¹(−J + σD) has eigenvalues of order σ D / |λ|, and
+    /// GMRES stalls). A problem that can should add σ D to what it
+    /// factorises.
+    fn set_shift(&mut self, _sigma: f64) {}
+
     /// Sets up the preconditioner about the base point `x` (after its
     /// residual was evaluated with [`Frozen::Renew`]). `last_krylov`: the
     /// Krylov iterations the previous Newton step's linear solve needed

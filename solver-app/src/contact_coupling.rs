@@ -27,12 +27,14 @@ mod frictionless_support;
 mod penalty_scale;
 mod restart;
 mod state_evaluation;
+mod traction_jacobian;
 
 pub use algorithm_choice::AlgorithmChoice;
 pub use augmentation_choice::AugmentationChoice;
 pub use friction_stiffness::{friction_normal_coupling, friction_stiffness};
 pub use frictionless_support::frictionless_slide;
 pub use penalty_scale::PenaltyScale;
+pub use traction_jacobian::TractionJacobianWork;
 
 /// Fraction of a face's previous linearisation contact fraction kept when
 /// the face opens against a rigid body (see [`ContactSide::beta`]):

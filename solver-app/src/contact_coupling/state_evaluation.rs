@@ -68,29 +68,7 @@ impl ContactSet {
             let start = std::time::Instant::now();
             Self::move_side(&mut ci.master, bodies, &self.cell_to_point);
             Self::move_side(&mut ci.slave, bodies, &self.cell_to_point);
-            if ci.face_shifts {
-                Self::face_shifts(&mut ci.master, bodies);
-                Self::face_shifts(&mut ci.slave, bodies);
-            }
-            let eps = ci.law.normal_penalty;
-            if ci.augmentation.is_some() && eps > 0.0 && ci.multiplier.iter().any(|&l| l > 0.0) {
-                let slave = &ci.slave;
-                ci.augmented_shift.clear();
-                ci.augmented_shift
-                    .extend((0..slave.surface.n_faces()).map(|f| {
-                        let base = slave
-                            .face_shift
-                            .get(f)
-                            .copied()
-                            .unwrap_or_else(Vector::zeros);
-                        base + slave.surface.face_normals[f] * (ci.multiplier[f] / eps)
-                    }));
-                ci.algorithm
-                    .set_face_shifts(&ci.master.face_shift, &ci.augmented_shift);
-            } else if ci.face_shifts || ci.augmentation.is_some() {
-                ci.algorithm
-                    .set_face_shifts(&ci.master.face_shift, &ci.slave.face_shift);
-            }
+            ci.apply_face_shifts(bodies);
             if frozen == Frozen::Renew {
                 ci.detector
                     .detect(&ci.master.surface, &ci.slave.surface, &mut ci.detected)
@@ -227,6 +205,38 @@ impl ContactSet {
             self.times.lap(Phase::ContactForce, force_start);
         }
         Ok(changes)
+    }
+}
+
+impl super::ContactInterface {
+    /// Hands the algorithm the faces' shifts: the boundary-value faces'
+    /// (`face_position = "boundary-value"`) and, with augmentation, the
+    /// slave faces moved on by λ/ε_n along their current normals (the
+    /// penalty then adds ε_n times the penetration to λ).
+    pub(super) fn apply_face_shifts(&mut self, bodies: &[Body]) {
+        if self.face_shifts {
+            ContactSet::face_shifts(&mut self.master, bodies);
+            ContactSet::face_shifts(&mut self.slave, bodies);
+        }
+        let eps = self.law.normal_penalty;
+        if self.augmentation.is_some() && eps > 0.0 && self.multiplier.iter().any(|&l| l > 0.0) {
+            let slave = &self.slave;
+            self.augmented_shift.clear();
+            self.augmented_shift
+                .extend((0..slave.surface.n_faces()).map(|f| {
+                    let base = slave
+                        .face_shift
+                        .get(f)
+                        .copied()
+                        .unwrap_or_else(Vector::zeros);
+                    base + slave.surface.face_normals[f] * (self.multiplier[f] / eps)
+                }));
+            self.algorithm
+                .set_face_shifts(&self.master.face_shift, &self.augmented_shift);
+        } else if self.face_shifts || self.augmentation.is_some() {
+            self.algorithm
+                .set_face_shifts(&self.master.face_shift, &self.slave.face_shift);
+        }
     }
 }
 

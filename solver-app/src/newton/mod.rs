@@ -36,7 +36,10 @@ use jacobian::{
 };
 use layout::StateLayout;
 use preconditioning::{Preconditioning, SWITCH_KRYLOV_ITERATIONS};
-use residual::{mean_cell_size, stiffness_area, ModelProblem, ResidualWork, ILU_STALLS_BEFORE_LU};
+use residual::{
+    mean_cell_size, stiffness_area, ModelProblem, ResidualWork, ILU_STALLS_BEFORE_LU,
+    SPRING_KRYLOV, SPRING_STALLS,
+};
 use segregated_operator::SegregatedOperator;
 use start::{FirstIterate, LastChange};
 
@@ -385,6 +388,11 @@ impl NewtonKrylovSolver {
             evaluations: 0,
             last_refusal: None,
             penetration: (0.0, None),
+            shift: 0.0,
+            exact_contact: self.preconditioning == Preconditioning::Jacobian,
+            jacobian_of_this_attempt: false,
+            spring_stalls: 0,
+            made_contact_derivative: None,
         };
         (&mut self.newton, problem)
     }
@@ -471,8 +479,12 @@ impl NewtonKrylovSolver {
             }
         });
         newton.release_krylov_pages();
-        let (switched, switch_factor, made_exact) =
-            (problem.switched, problem.switch_factor, problem.made_exact);
+        let (switched, switch_factor, made_exact, made_derivative) = (
+            problem.switched,
+            problem.switch_factor,
+            problem.made_exact,
+            problem.made_contact_derivative,
+        );
         self.x = x;
         if let Some(krylov) = switched {
             let factor = match switch_factor {
@@ -488,6 +500,12 @@ impl NewtonKrylovSolver {
             self.exact_rescue = true;
             self.notes.push(format!(
                 "t = {:.6e}: {ILU_STALLS_BEFORE_LU} Newton steps in a row needed {krylov} Krylov iterations with the ILU(0) of the assembled Jacobian as preconditioner; its LU preconditions from the next Newton step to the end of the step ([solver] linear.preconditioner = \"auto\")",
+                self.step_times.1
+            ));
+        }
+        if let Some(krylov) = made_derivative {
+            self.notes.push(format!(
+                "t = {:.6e}: {SPRING_STALLS} Newton steps in a row needed more than {SPRING_KRYLOV} Krylov iterations (the last {krylov}) with the LU of the assembled Jacobian and the contact springs; from the next step on its contact block is the derivative of the contact forces (linear.preconditioner = \"jacobian\")",
                 self.step_times.1
             ));
         }

@@ -26,7 +26,10 @@ pub enum Preconditioning {
     /// `"jacobian"`: the assembled Jacobian, factorised
     /// ([`super::jacobian`]). Newton's linear systems in a few Krylov
     /// iterations; its factorisation costs time and memory on large
-    /// meshes.
+    /// meshes. Only here does it factorise a continuation step's shifted
+    /// operator and turn its contact block into the derivative of the
+    /// contact forces when the springs stall
+    /// ([`super::residual::SPRING_STALLS`]).
     Jacobian,
 }
 

@@ -47,6 +47,18 @@ const PENETRATION_GROWTH: f64 = 1.5;
 /// with the ILU(0).
 pub const ILU_STALLS_BEFORE_LU: usize = 2;
 
+/// Newton steps in a row whose Krylov solves, preconditioned by the LU of
+/// the assembled Jacobian with the contact springs, need more than
+/// [`SPRING_KRYLOV`] iterations before the contact block becomes the
+/// derivative of the contact forces
+/// ([`AssembledJacobian::use_contact_derivative`]), for the rest of the
+/// run. With an exact block the LU's solves take one to five iterations;
+/// the springs' took 2–7 at the die's penalty scale 1 (more than 10 in
+/// 6 % of the steps, rarely in a row) and 8–17 at 100.
+pub const SPRING_STALLS: usize = 3;
+/// See [`SPRING_STALLS`].
+pub const SPRING_KRYLOV: usize = 10;
+
 /// The Jacobian factorised by ILU(0) is kept for the next Newton step
 /// while the last linear solve needed at most this many Krylov iterations
 /// (the LU: [`JACOBIAN_REUSE_KRYLOV`]). Its solves take 10–40 iterations
@@ -201,10 +213,33 @@ pub struct ModelProblem<'a> {
     pub evaluations: usize,
     /// Why the last evaluation was refused, if it was.
     pub last_refusal: Option<String>,
+    /// The pseudo-transient shift σ of the next linear solve
+    /// (`NonlinearProblem::set_shift`).
+    pub shift: f64,
+    /// `linear.preconditioner = "jacobian"`: the assembled Jacobian
+    /// factorises the continuation's operator −J + σ D, and its contact
+    /// block becomes the derivative of the contact forces once the
+    /// springs stall ([`SPRING_STALLS`]). Not under `"auto"`: there the
+    /// two, measured on the validation suite, cost two asserted figures
+    /// (docs/newton-krylov.md, "Contact derivative").
+    pub exact_contact: bool,
     /// Deepest contact penetration (fraction of the cell height) of the
     /// last renewal, and of the accepted base point (`None` before the
     /// first).
     pub penetration: (f64, Option<f64>),
+    /// Whether the assembled Jacobian was assembled at a state of this
+    /// attempt. With the derivative of the contact forces as its contact
+    /// block it is not kept from the last increment or attempt: that is
+    /// the derivative where the faces were, and the step moved them in and
+    /// out of contact (die drawing, augmented: 19–29 Krylov iterations per
+    /// first Newton step with the old block, 1–5 with a fresh one).
+    pub jacobian_of_this_attempt: bool,
+    /// Consecutive Newton steps beyond [`SPRING_KRYLOV`] with the LU of
+    /// the springs' Jacobian.
+    pub spring_stalls: usize,
+    /// The Krylov iterations that made the contact block the derivative,
+    /// if they did.
+    pub made_contact_derivative: Option<usize>,
 }
 
 /// Mean distance between neighbouring cell centres of the deformable bodies.
@@ -409,6 +444,10 @@ impl NonlinearProblem for ModelProblem<'_> {
         contact_step_limit(self.bodies, self.contacts, self.layout, dx)
     }
 
+    fn set_shift(&mut self, sigma: f64) {
+        self.shift = sigma;
+    }
+
     fn accept(&mut self) {
         self.penetration.1 = Some(self.penetration.0);
     }
@@ -442,23 +481,61 @@ impl NonlinearProblem for ModelProblem<'_> {
                 }
             }
         }
+        if let (Some(j), Some(k)) = (self.jacobian.as_mut(), last_krylov) {
+            if self.exact_contact
+                && !self.contacts.is_empty()
+                && j.kind() == JacobianFactor::Lu
+                && !j.contact_derivative()
+            {
+                self.spring_stalls = if k > SPRING_KRYLOV {
+                    self.spring_stalls + 1
+                } else {
+                    0
+                };
+                if self.spring_stalls >= SPRING_STALLS {
+                    j.use_contact_derivative();
+                    self.made_contact_derivative = Some(k);
+                }
+            }
+        }
         let reuse_limit = match self.jacobian.as_ref().map(|j| j.kind()) {
             Some(JacobianFactor::Ilu0) => ILU_REUSE_KRYLOV,
             _ => JACOBIAN_REUSE_KRYLOV,
         };
-        let reuse = last_krylov.is_some_and(|k| k <= reuse_limit);
+        let fresh = self.jacobian_of_this_attempt
+            || self.contacts.is_empty()
+            || self
+                .jacobian
+                .as_ref()
+                .is_some_and(|j| !j.contact_derivative());
+        let reuse = last_krylov.is_some_and(|k| k <= reuse_limit) && fresh;
+        let shift = if self.exact_contact { self.shift } else { 0.0 };
         let r = match self.jacobian.as_mut() {
             // the assembled Jacobian is costly to factorise: kept while it
             // serves (an older Jacobian still preconditions the products of
             // the current one)
-            Some(j) if reuse && j.is_factorised() => Ok(()),
+            Some(j) if reuse && j.is_factorised() && j.shift() == shift => Ok(()),
             Some(j) => {
-                let r = j.assemble(self.bodies, self.contacts, self.layout, &self.params);
+                self.jacobian_of_this_attempt = true;
+                let shift = (shift, self.work.damping.as_slice());
+                let r = j.assemble(
+                    self.bodies,
+                    &mut *self.contacts,
+                    self.layout,
+                    &self.params,
+                    shift,
+                );
                 if r.is_err() && self.exact_after.is_some() && j.kind() == JacobianFactor::Ilu0 {
                     // an ILU(0) that no diagonal shift keeps regular
                     j.refactor_as(JacobianFactor::Lu);
                     self.made_exact = Some(last_krylov.unwrap_or(0));
-                    j.assemble(self.bodies, self.contacts, self.layout, &self.params)
+                    j.assemble(
+                        self.bodies,
+                        &mut *self.contacts,
+                        self.layout,
+                        &self.params,
+                        shift,
+                    )
                 } else {
                     r
                 }

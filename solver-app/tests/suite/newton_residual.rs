@@ -181,6 +181,19 @@ fn probe_exact_newton_step() {
 /// random state of the case, relative error of the product (the material
 /// tangents are themselves finite differences: about 1e-6).
 fn assembled_against_products(text: &str, seed: u64, x_scale: f64) -> f64 {
+    assembled_against_shifted_products(text, seed, x_scale, 0.0, 0.0)
+}
+
+/// The relative difference between the assembled −J + σ D (the
+/// preconditioner of a step shifted by `sigma`) and finite-difference
+/// products of −J plus `added` × D.
+fn assembled_against_shifted_products(
+    text: &str,
+    seed: u64,
+    x_scale: f64,
+    sigma: f64,
+    added: f64,
+) -> f64 {
     let case = parse_case_with(
         text,
         std::path::Path::new("case.toml"),
@@ -201,8 +214,15 @@ fn assembled_against_products(text: &str, seed: u64, x_scale: f64) -> f64 {
         &layout,
         solver_app::newton::jacobian::JacobianFactor::Lu,
     ));
+    if let Some(j) = jac.as_mut().filter(|_| !contacts.is_empty()) {
+        // the contact block the assembly switches to: the derivative of
+        // the contact forces (the springs are only near it)
+        j.use_contact_derivative();
+    }
     let mut p = solver.problem(&mut bodies, &mut contacts);
     p.jacobian = &mut jac;
+    // as under linear.preconditioner = "jacobian" (the shift taken in)
+    p.exact_contact = true;
     let mut x = seeded(n, seed, x_scale);
     let mut v = seeded(n, seed + 1, 1.0);
     for (c, &off) in layout.unsolved.iter().enumerate() {
@@ -213,13 +233,21 @@ fn assembled_against_products(text: &str, seed: u64, x_scale: f64) -> f64 {
     }
     let mut f0 = vec![0.0; n];
     p.residual(&x, &mut f0, Frozen::Renew).unwrap();
+    p.set_shift(sigma);
     p.prepare_preconditioner(&x, None).unwrap();
     let nv = v.iter().map(|a| a * a).sum::<f64>().sqrt();
     let h = 1e-7 * x_scale.max(1e-3) / nv * (n as f64).sqrt();
     let xp: Vec<f64> = x.iter().zip(&v).map(|(x, v)| x + h * v).collect();
     let mut fp = vec![0.0; n];
     p.residual(&xp, &mut fp, Frozen::Keep).unwrap();
-    let fd: Vec<f64> = fp.iter().zip(&f0).map(|(a, b)| -(a - b) / h).collect();
+    let mut dv = vec![0.0; n];
+    assert!(p.damping(&v, &mut dv));
+    let fd: Vec<f64> = fp
+        .iter()
+        .zip(&f0)
+        .zip(&dv)
+        .map(|((a, b), d)| -(a - b) / h + added * d)
+        .collect();
     drop(p);
     let mut jv = vec![0.0; n];
     jac.as_mut()
@@ -323,4 +351,79 @@ fn assembled_jacobian_is_the_derivative_of_the_residual() {
         let e = assembled_against_products(&unloaded, 11, scale);
         assert!(e < 1e-5, "{strain} {gen} {material} unloaded: {e:.3e}");
     }
+}
+
+#[test]
+fn the_assembled_jacobian_of_a_shifted_step_holds_the_shift() {
+    // the pseudo-transient continuation's operator is −J + σ D; the
+    // assembled Jacobian of linear.preconditioner = "jacobian" factorises
+    // the same
+    let text = BLOCK
+        .replace("STRAIN", "small")
+        .replace("GRADING", "[1, 1, 1]")
+        .replace(
+            "MATERIAL",
+            "{ model = \"linear-elastic\", E = 1000, nu = 0.3 }",
+        );
+    let e = assembled_against_shifted_products(&text, 11, 1e-3, 0.3, 0.3);
+    assert!(e < 1e-6, "shifted: {e:.3e}");
+    // the shift is no small part of the operator
+    let e = assembled_against_shifted_products(&text, 11, 1e-3, 0.3, 0.0);
+    assert!(e > 0.05, "the shift left out: {e:.3e}");
+}
+
+const PRESSED_BLOCKS: &str = r#"
+title = "pressed"
+[analysis]
+strain = "small"
+[time]
+end = 1.0
+steps = 1
+[[body]]
+name = "top"
+mesh = { generator = "box", min = [0, 0, -0.02], max = [1, 1, 0.5], cells = [3, 3, 2] }
+material = { model = "linear-elastic", E = 1000, nu = 0.3 }
+[body.boundary.zmax]
+type = "displacement"
+value = [0, 0, -0.01]
+[[body]]
+name = "bottom"
+mesh = { generator = "box", min = [-0.2, -0.2, -0.5], max = [1.2, 1.2, 0], cells = [4, 4, 2] }
+material = { model = "linear-elastic", E = 1000, nu = 0.3 }
+[body.boundary.zmin]
+type = "displacement"
+value = [0, 0, 0]
+[[contact]]
+master = "bottom/zmax"
+slave = "top/zmin"
+penalty_scale = 100
+"#;
+
+#[test]
+fn assembled_contact_block_is_the_derivative_of_the_contact_forces() {
+    let e = assembled_against_products(PRESSED_BLOCKS, 11, 1e-4);
+    eprintln!("pressed blocks: {e:.3e}");
+    assert!(e < 1e-3, "pressed blocks: {e:.3e}");
+}
+
+/// [`PRESSED_BLOCKS`] as a plane problem: one cell through the thickness,
+/// the z faces empty.
+fn pressed_plane_blocks() -> String {
+    PRESSED_BLOCKS
+        .replace("max = [1, 1, 0.5], cells = [3, 3, 2]", "max = [1, 0.5, 0.1], cells = [3, 2, 1]")
+        .replace("min = [0, 0, -0.02]", "min = [0, -0.02, 0]")
+        .replace("min = [-0.2, -0.2, -0.5], max = [1.2, 1.2, 0], cells = [4, 4, 2]", "min = [-0.2, -0.5, 0], max = [1.2, 0, 0.1], cells = [4, 2, 1]")
+        .replace("body.boundary.zmax]\ntype = \"displacement\"\nvalue = [0, 0, -0.01]", "body.boundary.ymax]\ntype = \"displacement\"\nvalue = [0, -0.01, 0]")
+        .replace("body.boundary.zmin]\ntype = \"displacement\"", "body.boundary.ymin]\ntype = \"displacement\"")
+        .replace("master = \"bottom/zmax\"\nslave = \"top/zmin\"", "master = \"bottom/ymax\"\nslave = \"top/ymin\"")
+        .replace("[[body]]\nname = \"bottom\"", "[body.boundary.zmin]\ntype = \"empty\"\n[body.boundary.zmax]\ntype = \"empty\"\n[[body]]\nname = \"bottom\"")
+        .replace("[[contact]]", "[body.boundary.zmin]\ntype = \"empty\"\n[body.boundary.zmax]\ntype = \"empty\"\n[[contact]]")
+}
+
+#[test]
+fn assembled_contact_block_of_a_plane_problem_is_the_derivative_of_the_contact_forces() {
+    let text = pressed_plane_blocks();
+    let e = assembled_against_products(&text, 11, 1e-4);
+    eprintln!("pressed plane blocks: {e:.3e}");
+    assert!(e < 1e-3, "pressed plane blocks: {e:.3e}\n{text}");
 }

@@ -1374,31 +1374,7 @@ impl ContactSet {
             }
             Self::move_side(&mut ci.master, bodies, &self.cell_to_point);
             Self::move_side(&mut ci.slave, bodies, &self.cell_to_point);
-            if ci.face_shifts {
-                Self::face_shifts(&mut ci.master, bodies);
-                Self::face_shifts(&mut ci.slave, bodies);
-            }
-            let eps = ci.law.normal_penalty;
-            if ci.augmentation.is_some() && eps > 0.0 && ci.multiplier.iter().any(|&l| l > 0.0) {
-                // the slave faces moved on by λ/ε_n along their normals: the
-                // penalty then adds ε_n times the penetration to λ
-                let slave = &ci.slave;
-                ci.augmented_shift.clear();
-                ci.augmented_shift
-                    .extend((0..slave.surface.n_faces()).map(|f| {
-                        let base = slave
-                            .face_shift
-                            .get(f)
-                            .copied()
-                            .unwrap_or_else(Vector::zeros);
-                        base + slave.surface.face_normals[f] * (ci.multiplier[f] / eps)
-                    }));
-                ci.algorithm
-                    .set_face_shifts(&ci.master.face_shift, &ci.augmented_shift);
-            } else if ci.face_shifts || ci.augmentation.is_some() {
-                ci.algorithm
-                    .set_face_shifts(&ci.master.face_shift, &ci.slave.face_shift);
-            }
+            ci.apply_face_shifts(bodies);
             ci.detector
                 .detect(&ci.master.surface, &ci.slave.surface, &mut ci.pairs)
                 .map_err(|e| format!("contact {}: detection: {e}", ci.slave_name))?;
@@ -1417,19 +1393,7 @@ impl ContactSet {
                 }
                 ci.penalty_localised = true;
             }
-            ci.stats = ci
-                .algorithm
-                .compute(
-                    &ci.master.surface,
-                    &ci.slave.surface,
-                    &ci.pairs,
-                    &ci.law,
-                    &mut ci.tractions,
-                )
-                .map_err(|e| format!("contact {}: {e}", ci.slave_name))?;
-            if ci.augmentation.is_some() {
-                ci.unshift_augmented_gaps();
-            }
+            ci.compute_tractions()?;
             transmitted_forces(&mut ci.stats, &ci.tractions, &ci.master, &ci.slave, bodies);
             let info = ci
                 .coupling

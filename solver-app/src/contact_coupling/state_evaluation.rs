@@ -89,19 +89,7 @@ impl ContactSet {
                 ci.penalty_localised = true;
             }
             ci.algorithm.freeze_friction_shares(frozen == Frozen::Keep);
-            ci.stats = ci
-                .algorithm
-                .compute(
-                    &ci.master.surface,
-                    &ci.slave.surface,
-                    &ci.pairs,
-                    &ci.law,
-                    &mut ci.tractions,
-                )
-                .map_err(|e| format!("contact {}: {e}", ci.slave_name))?;
-            if ci.augmentation.is_some() {
-                ci.unshift_augmented_gaps();
-            }
+            ci.compute_tractions()?;
             transmitted_forces(&mut ci.stats, &ci.tractions, &ci.master, &ci.slave, bodies);
             if self.trace && frozen == Frozen::Renew {
                 eprintln!(
@@ -209,6 +197,26 @@ impl ContactSet {
 }
 
 impl super::ContactInterface {
+    /// The algorithm's tractions at the surfaces' current positions, into
+    /// `tractions`, and their statistics into `stats`; the augmented shift
+    /// taken back out of the gaps (and the deepest penetration).
+    pub(super) fn compute_tractions(&mut self) -> Result<(), String> {
+        self.stats = self
+            .algorithm
+            .compute(
+                &self.master.surface,
+                &self.slave.surface,
+                &self.pairs,
+                &self.law,
+                &mut self.tractions,
+            )
+            .map_err(|e| format!("contact {}: {e}", self.slave_name))?;
+        if self.augmentation.is_some() {
+            self.unshift_augmented_gaps();
+        }
+        Ok(())
+    }
+
     /// Hands the algorithm the faces' shifts: the boundary-value faces'
     /// (`face_position = "boundary-value"`) and, with augmentation, the
     /// slave faces moved on by λ/ε_n along their current normals (the

@@ -98,6 +98,20 @@ fn side_of_mut(ci: &mut ContactInterface, s: u8) -> &mut ContactSide {
 /// surface's area between two deformable bodies under the updated
 /// Lagrangian form (as the face balance takes it, `area_ratio`), over
 /// `fixed` otherwise.
+/// [`forces`] of both sides (master, slave) from `tractions`.
+fn side_forces(
+    tractions: &ContactTractions,
+    ci: &ContactInterface,
+    moved: [bool; 2],
+    fixed: &[Vec<f64>; 2],
+    out: &mut [Vec<Vector>; 2],
+) {
+    let contact = [&tractions.master, &tractions.slave];
+    for (s, out) in out.iter_mut().enumerate() {
+        forces(contact[s], side_of(ci, s as u8), moved[s], &fixed[s], out);
+    }
+}
+
 fn forces(
     contact: &contact_force::SurfaceContact,
     side: &ContactSide,
@@ -154,20 +168,9 @@ impl ContactSet {
             work.fixed[s].clone_from(&side_of(ci, s as u8).surface.face_mag);
         }
         let fixed = std::mem::take(&mut work.fixed);
-        for s in 0..2 {
-            let contact = if s == 0 {
-                &ci.tractions.master
-            } else {
-                &ci.tractions.slave
-            };
-            forces(
-                contact,
-                side_of(ci, s as u8),
-                moved[s],
-                &fixed[s],
-                &mut work.base[s],
-            );
-            work.positions[s].clone_from(&side_of(ci, s as u8).current);
+        side_forces(&ci.tractions, ci, moved, &fixed, &mut work.base);
+        for (s, positions) in work.positions.iter_mut().enumerate() {
+            positions.clone_from(&side_of(ci, s as u8).current);
         }
         work.derivative.clear();
         work.derivative.resize(work.affected.len(), Tensor::zeros());
@@ -209,20 +212,7 @@ impl ContactSet {
                         &mut work.tractions,
                     )
                     .map_err(|e| format!("contact {}: {e}", ci.slave_name))?;
-                for s in 0..2usize {
-                    let contact = if s == 0 {
-                        &work.tractions.master
-                    } else {
-                        &work.tractions.slave
-                    };
-                    forces(
-                        contact,
-                        side_of(ci, s as u8),
-                        moved[s],
-                        &fixed[s],
-                        &mut work.probe[s],
-                    );
-                }
+                side_forces(&work.tractions, ci, moved, &fixed, &mut work.probe);
                 for &c in &work.by_colour[cols.clone()] {
                     let c = c as usize;
                     let s = work.columns[c].0;
@@ -252,18 +242,7 @@ impl ContactSet {
             side.surface.update_points(&side.current);
         }
         ci.apply_face_shifts(bodies);
-        ci.algorithm
-            .compute(
-                &ci.master.surface,
-                &ci.slave.surface,
-                &ci.pairs,
-                &ci.law,
-                &mut ci.tractions,
-            )
-            .map_err(|e| format!("contact {}: {e}", ci.slave_name))?;
-        if ci.augmentation.is_some() {
-            ci.unshift_augmented_gaps();
-        }
+        ci.compute_tractions()?;
         // chain: the point's displacement from the state (cell-to-point
         // weights; a group's points share them); a face's force on its
         // face node's row
